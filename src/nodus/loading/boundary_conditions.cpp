@@ -1,0 +1,177 @@
+#include "nodus/loading/boundary_conditions.hpp"
+
+#include <cmath>
+#include <stdexcept>
+
+#include <fmt/format.h>
+#include <Eigen/Geometry>
+
+#include "nodus/solver/sparse_assembler.hpp"
+
+namespace nodus::loading {
+namespace {
+
+Eigen::Matrix3d rotation_matrix(const Vec3& rotation_vector) {
+  const double angle = rotation_vector.norm();
+  if (angle == 0.0) return Eigen::Matrix3d::Identity();
+  return Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix();
+}
+
+}  // namespace
+
+int Conditions::add_motion(std::string name, int node, const DofMask& mask) {
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::motion;
+  item.node = node;
+  item.mask = mask;
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+int Conditions::add_load(std::string name, int node, const Vec3& force, const Vec3& moment_axis,
+                         double moment) {
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::load;
+  item.node = node;
+  item.force.reset(0.0, force);
+  item.moment.reset(0.0, moment);
+  item.axis = moment_axis.normalized();
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
+  Item& item = at(c);
+  item.active = true;
+  const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.node);
+  if (item.kind == ConditionKind::motion) {
+    item.anchor = state;
+    item.translation.reset(time, Vec3::Zero());
+    item.rotation.reset(time, Vec3::Zero());
+  } else {
+    // The moment acts through the director most nearly normal to its axis.
+    const Vec3 g1 = state.segment<3>(3), g2 = state.segment<3>(6);
+    item.director =
+        std::abs(g1.normalized().dot(item.axis)) <= std::abs(g2.normalized().dot(item.axis)) ? 0 : 1;
+    item.angle.emplace(item.axis, item.director == 0 ? g1 : g2);
+  }
+}
+
+void Conditions::release(int c) {
+  at(c).active = false;
+}
+
+void Conditions::hold_until(double time) {
+  for (Item& item : items_) {
+    if (item.translation.last_time() < time) item.translation.add(time, item.translation.at(time));
+    if (item.rotation.last_time() < time) item.rotation.add(time, item.rotation.at(time));
+    if (item.force.last_time() < time) item.force.add(time, item.force.at(time));
+    if (item.moment.last_time() < time) item.moment.add(time, item.moment.at(time));
+  }
+}
+
+void Conditions::add_motion_keyframe(int c, double time, const Vec3& translation, const Vec3& rotation) {
+  Item& item = at(c);
+  if (item.kind != ConditionKind::motion) throw std::logic_error("add_motion_keyframe on a load");
+  item.translation.add(time, translation);
+  item.rotation.add(time, rotation);
+}
+
+void Conditions::add_load_keyframe(int c, double time, const Vec3& force, double moment) {
+  Item& item = at(c);
+  if (item.kind != ConditionKind::load) throw std::logic_error("add_load_keyframe on a motion");
+  item.force.add(time, force);
+  item.moment.add(time, moment);
+}
+
+std::vector<bool> Conditions::prescribed(int num_dofs) const {
+  std::vector<bool> mask(static_cast<std::size_t>(num_dofs), false);
+  std::vector<int> owner(static_cast<std::size_t>(num_dofs), -1);
+  for (int c = 0; c < size(); ++c) {
+    const Item& item = at(c);
+    if (!item.active || item.kind != ConditionKind::motion) continue;
+    for (int d = 0; d < kNodeDofs; ++d) {
+      if (!item.mask[d]) continue;
+      const auto dof = static_cast<std::size_t>(kNodeDofs * item.node + d);
+      if (owner[dof] >= 0)
+        throw std::runtime_error(fmt::format("conditions '{}' and '{}' both prescribe unknown {} of node {}",
+                                             at(owner[dof]).name, item.name, d, item.node));
+      owner[dof] = c;
+      mask[dof] = true;
+    }
+  }
+  return mask;
+}
+
+NodeVector Conditions::prescribed_values(const Item& item, double time) const {
+  const Eigen::Matrix3d q = rotation_matrix(item.rotation.at(time));
+  NodeVector v;
+  v << item.anchor.segment<3>(0) + item.translation.at(time), q * item.anchor.segment<3>(3),
+      q * item.anchor.segment<3>(6);
+  return v;
+}
+
+void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
+  for (const Item& item : items_) {
+    if (!item.active || item.kind != ConditionKind::motion) continue;
+    const NodeVector v = prescribed_values(item, time);
+    for (int d = 0; d < kNodeDofs; ++d)
+      if (item.mask[d]) x[kNodeDofs * item.node + d] = v[d];
+  }
+}
+
+void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
+  for (const Item& item : items_) {
+    if (!item.active || item.kind != ConditionKind::load) continue;
+    const int base = kNodeDofs * item.node;
+    f_ext.segment<3>(base) += item.force.at(time);
+    const double m = item.moment.at(time);
+    if (m != 0.0) {
+      const int v = base + 3 + 3 * item.director;
+      f_ext.segment<3>(v) += m * item.angle->gradient(x.segment<3>(v));
+    }
+  }
+}
+
+void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
+                                  solver::SparseAssembler& assembler) const {
+  for (const Item& item : items_) {
+    if (!item.active || item.kind != ConditionKind::load) continue;
+    const double m = item.moment.at(time);
+    if (m == 0.0) continue;
+    const int v = kNodeDofs * item.node + 3 + 3 * item.director;
+    Eigen::Matrix<double, kNodeDofs, kNodeDofs> k = Eigen::Matrix<double, kNodeDofs, kNodeDofs>::Zero();
+    k.block<3, 3>(3 + 3 * item.director, 3 + 3 * item.director) = -m * item.angle->hessian(x.segment<3>(v));
+    const int nodes[1] = {item.node};
+    assembler.add(nodes, k);
+  }
+}
+
+void Conditions::commit(const Eigen::VectorXd& x) {
+  for (Item& item : items_)
+    if (item.active && item.angle)
+      item.angle->commit(x.segment<3>(kNodeDofs * item.node + 3 + 3 * item.director));
+}
+
+SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd& x,
+                                       const Eigen::VectorXd& residual) const {
+  const Item& item = at(c);
+  SectionForce out;
+  if (!item.active) return out;
+  const int base = kNodeDofs * item.node;
+  if (item.kind == ConditionKind::load) {
+    out.force = item.force.at(time);
+    out.moment = item.moment.at(time) * item.axis;
+    return out;
+  }
+  // f_int - f_ext at a prescribed section is what the support must supply; its moment about the centre is the
+  // sum of g_a x (force on g_a).
+  out.force = residual.segment<3>(base);
+  out.moment = x.segment<3>(base + 3).cross(residual.segment<3>(base + 3)) +
+               x.segment<3>(base + 6).cross(residual.segment<3>(base + 6));
+  return out;
+}
+
+}  // namespace nodus::loading

@@ -1,0 +1,101 @@
+#pragma once
+/// Boundary conditions on cross-sections: prescribed motions (clamps are motions that stay put) and loads
+/// (a dead force on the centre, a moment about a fixed axis) [Durville 2012, Eq. 4]. A prescribed rotation
+/// acts by rotating the section directors: g_a(t) = Q(t) g_a(activation), r(t) = r(activation) + u(t).
+
+#include <array>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nodus/loading/moment_load.hpp"
+#include "nodus/loading/path.hpp"
+
+namespace nodus::solver {
+class SparseAssembler;
+}
+
+namespace nodus::loading {
+
+inline constexpr int kNodeDofs = 9;
+using DofMask = std::array<bool, kNodeDofs>;
+using NodeVector = Eigen::Matrix<double, kNodeDofs, 1>;
+
+/// Force and moment that the supports (or loads) exert on a section [N, N mm], moment about its centre.
+struct SectionForce {
+  Vec3 force = Vec3::Zero();
+  Vec3 moment = Vec3::Zero();
+};
+
+enum class ConditionKind { motion, load };
+
+class Conditions {
+ public:
+  /// A prescribed motion of the dofs in `mask` of global node `node`; a clamp is a motion with no keyframes.
+  int add_motion(std::string name, int node, const DofMask& mask);
+  /// A load on global node `node`: force [N] and moment [N mm] at load time 0. The moment's axis is fixed:
+  /// `moment_axis` (unit) for the whole run; its value is moment_axis * moment.
+  int add_load(std::string name, int node, const Vec3& force, const Vec3& moment_axis, double moment);
+
+  int size() const { return static_cast<int>(items_.size()); }
+  const std::string& name(int c) const { return at(c).name; }
+  ConditionKind kind(int c) const { return at(c).kind; }
+  int node(int c) const { return at(c).node; }
+  bool active(int c) const { return at(c).active; }
+
+  /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
+  void activate(int c, double time, const Eigen::VectorXd& x);
+  void release(int c);
+
+  /// Adds a keyframe of a motion: translation [mm] and rotation vector [rad], cumulative since activation.
+  void add_motion_keyframe(int c, double time, const Vec3& translation, const Vec3& rotation);
+  /// Adds a keyframe of a load: force [N], moment about the fixed axis [N mm].
+  void add_load_keyframe(int c, double time, const Vec3& force, double moment);
+  /// Holds every path at its current value up to `time` (call at the start of a stage, before keyframes).
+  void hold_until(double time);
+
+  /// Mask of the prescribed unknowns (all nodes). Throws std::runtime_error naming both conditions if two
+  /// active conditions prescribe the same unknown.
+  std::vector<bool> prescribed(int num_dofs) const;
+  /// Sets the prescribed unknowns of x to their values at load time t.
+  void apply_prescribed(double time, Eigen::VectorXd& x) const;
+  /// Generalised external forces of the active loads at time t and state x.
+  void external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const;
+  /// Adds minus the derivative of the external forces (load stiffness of moments) to the tangent.
+  void add_load_tangent(double time, const Eigen::VectorXd& x, solver::SparseAssembler& assembler) const;
+  /// Accepts the state x as converged (moment angles count their turns).
+  void commit(const Eigen::VectorXd& x);
+
+  /// The force and moment of condition c on its section: for a motion, the reaction of the support, read from
+  /// the out-of-balance forces `residual` = f_int - f_ext at the section's unknowns; for a load, the load.
+  SectionForce section_force(int c, double time, const Eigen::VectorXd& x,
+                             const Eigen::VectorXd& residual) const;
+
+ private:
+  struct Item {
+    std::string name;
+    ConditionKind kind = ConditionKind::motion;
+    int node = 0;
+    DofMask mask{};
+    bool active = false;
+    // motion
+    NodeVector anchor = NodeVector::Zero();
+    Path<Vec3> translation{Vec3::Zero()};
+    Path<Vec3> rotation{Vec3::Zero()};
+    // load
+    Path<Vec3> force{Vec3::Zero()};
+    Path<double> moment{0.0};
+    Vec3 axis = Vec3::UnitZ();
+    int director = 0;  ///< 0: g1, 1: g2, the one the moment acts through
+    std::optional<AxisAngle> angle;
+  };
+  const Item& at(int c) const { return items_.at(static_cast<std::size_t>(c)); }
+  Item& at(int c) { return items_.at(static_cast<std::size_t>(c)); }
+  NodeVector prescribed_values(const Item& item, double time) const;
+
+  std::vector<Item> items_;
+};
+
+}  // namespace nodus::loading

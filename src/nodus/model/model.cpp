@@ -1,0 +1,76 @@
+#include "nodus/model/model.hpp"
+
+#include <array>
+
+#include "nodus/solver/sparse_assembler.hpp"
+
+namespace nodus::model {
+
+int Model::add_beam(const beam::BeamDefinition& definition) {
+  beams_.emplace_back(definition, num_nodes_);
+  const beam::Beam& b = beams_.back();
+  properties_.push_back(b.element_properties(gauss_points_));
+  const int index = static_cast<int>(beams_.size()) - 1;
+  for (int e = 0; e < b.num_elements(); ++e) elements_.push_back({index, b.node(2 * e)});
+  reference_.conservativeResize(kDofsPerNode * (num_nodes_ + b.num_nodes()));
+  for (int i = 0; i < b.num_nodes(); ++i)
+    reference_.segment<kDofsPerNode>(kDofsPerNode * b.node(i)) = b.reference_node(i);
+  num_nodes_ += b.num_nodes();
+  return index;
+}
+
+std::vector<std::vector<int>> Model::element_nodes() const {
+  std::vector<std::vector<int>> nodes;
+  nodes.reserve(elements_.size());
+  for (const Element& e : elements_) nodes.push_back({e.first_node, e.first_node + 1, e.first_node + 2});
+  return nodes;
+}
+
+beam::ElementVector Model::gather(const Eigen::VectorXd& x, int element) const {
+  return x.segment<beam::kElementDofs>(kDofsPerNode *
+                                       elements_[static_cast<std::size_t>(element)].first_node);
+}
+
+Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> Model::node_strains(const Eigen::VectorXd& x) const {
+  Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> strains =
+      Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic>::Zero(beam::kNumStrains, num_nodes_);
+  Eigen::VectorXi count = Eigen::VectorXi::Zero(num_nodes_);
+  for (int e = 0; e < num_elements(); ++e) {
+    const Element& el = elements_[static_cast<std::size_t>(e)];
+    const beam::ElementVector x_e = gather(x, e);
+    const double h = properties_[static_cast<std::size_t>(el.beam)].length;
+    for (int i = 0; i < 3; ++i) {
+      strains.col(el.first_node + i) += beam::strain_measures(beam::element_kinematics(x_e, h, i - 1.0));
+      ++count[el.first_node + i];
+    }
+  }
+  for (int n = 0; n < num_nodes_; ++n) strains.col(n) /= count[n];
+  return strains;
+}
+
+double Model::internal_energy(const Eigen::VectorXd& x) const {
+  double energy = 0.0;
+  for (int e = 0; e < num_elements(); ++e)
+    energy += beam::element_energy(gather(x, e), properties_[static_cast<std::size_t>(elements_[e].beam)]);
+  return energy;
+}
+
+void Model::internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
+                           solver::SparseAssembler* assembler) const {
+  force.setZero(num_dofs());
+  if (assembler) assembler->set_zero();
+  beam::ElementVector f_e;
+  beam::ElementMatrix k_e;
+  for (int e = 0; e < num_elements(); ++e) {
+    const Element& el = elements_[static_cast<std::size_t>(e)];
+    beam::element_internal_force(gather(x, e), properties_[static_cast<std::size_t>(el.beam)], f_e,
+                                 assembler ? &k_e : nullptr);
+    force.segment<beam::kElementDofs>(kDofsPerNode * el.first_node) += f_e;
+    if (assembler) {
+      const std::array<int, 3> nodes{el.first_node, el.first_node + 1, el.first_node + 2};
+      assembler->add(nodes, k_e);
+    }
+  }
+}
+
+}  // namespace nodus::model

@@ -1,0 +1,67 @@
+#pragma once
+/// The mechanical model: the beams of an assembly, their nodes and unknowns, and their internal virtual work
+/// [Durville 2012, Eq. 3 and 8]. Unknowns are the current nodal values (r, g1, g2), nine per node, node by
+/// node; the displacement is the difference to `reference()`.
+
+#include <span>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nodus/beam/beam.hpp"
+
+namespace nodus::solver {
+class SparseAssembler;
+}
+
+namespace nodus::model {
+
+inline constexpr int kDofsPerNode = beam::kNodeDofs;
+
+class Model {
+ public:
+  explicit Model(int gauss_points = 2) : gauss_points_(gauss_points) {}
+
+  /// Adds a beam; returns its index.
+  int add_beam(const beam::BeamDefinition& definition);
+
+  const std::vector<beam::Beam>& beams() const { return beams_; }
+  const beam::Beam& beam(int i) const { return beams_.at(static_cast<std::size_t>(i)); }
+  int num_nodes() const { return num_nodes_; }
+  int num_dofs() const { return kDofsPerNode * num_nodes_; }
+  int num_elements() const { return static_cast<int>(elements_.size()); }
+  int gauss_points() const { return gauss_points_; }
+
+  /// Reference configuration (nine values per node).
+  const Eigen::VectorXd& reference() const { return reference_; }
+  /// Global node indices of each element (three per element).
+  std::vector<std::vector<int>> element_nodes() const;
+  /// The 27 element unknowns gathered from the global vector.
+  beam::ElementVector gather(const Eigen::VectorXd& x, int element) const;
+
+  /// The 15 strain measures (beam/strain_measures.hpp) at every node, one column per node; at a node shared
+  /// by two elements, the mean of the two elements' values.
+  Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> node_strains(const Eigen::VectorXd& x) const;
+
+  /// Total strain energy [N mm].
+  double internal_energy(const Eigen::VectorXd& x) const;
+  /// Internal force vector over all unknowns (prescribed ones too: there it carries the reactions), and the
+  /// tangent over the free unknowns into `assembler` if not null.
+  void internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
+                      solver::SparseAssembler* assembler) const;
+
+ private:
+  struct Element {
+    int beam;
+    int first_node;  ///< nodes first_node, first_node + 1, first_node + 2
+  };
+
+  int gauss_points_;
+  std::vector<beam::Beam> beams_;
+  std::vector<beam::ElementProperties> properties_;  ///< one per beam
+  std::vector<Element> elements_;
+  Eigen::VectorXd reference_;
+  int num_nodes_ = 0;
+};
+
+}  // namespace nodus::model

@@ -1,0 +1,98 @@
+#include "nodus/simulation/equilibrium_problem.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace nodus::simulation {
+
+EquilibriumProblem::EquilibriumProblem(const model::Model& model, loading::Conditions& conditions,
+                                       Tolerances tolerances)
+    : model_(model),
+      conditions_(conditions),
+      tolerances_(tolerances),
+      x_(model.reference()),
+      x_committed_(x_) {
+  // Scales: positions by the largest beam length. Forces have a floor at the level of rounding errors in the
+  // internal forces: a strain is computed from positions of size |x| differentiated over an element length h,
+  // so it carries an error of about eps |x| / h, and each of the n unknowns an error of about E A eps |x| /
+  // h. Below that floor no residual can be asked for; above it the relative tolerance applies.
+  length_scale_ = 0.0;
+  double stiffest = 0.0, shortest = INFINITY;
+  for (const beam::Beam& b : model_.beams()) {
+    length_scale_ = std::max(length_scale_, b.length());
+    shortest = std::min(shortest, b.element_length());
+    const beam::ElementProperties p = b.element_properties(1);
+    stiffest = std::max(stiffest, p.stiffness(beam::kE33, beam::kE33));
+  }
+  const double extent = std::max(length_scale_, x_.lpNorm<Eigen::Infinity>());
+  force_floor_ = 10.0 * std::numeric_limits<double>::epsilon() * stiffest * (extent / shortest) *
+                 std::sqrt(static_cast<double>(model_.num_dofs()));
+  update_free_set();
+}
+
+void EquilibriumProblem::update_free_set() {
+  prescribed_ = conditions_.prescribed(model_.num_dofs());
+  std::vector<int> free_index(static_cast<std::size_t>(model_.num_dofs()), -1);
+  free_dofs_.clear();
+  for (int i = 0; i < model_.num_dofs(); ++i)
+    if (!prescribed_[static_cast<std::size_t>(i)]) {
+      free_index[static_cast<std::size_t>(i)] = static_cast<int>(free_dofs_.size());
+      free_dofs_.push_back(i);
+    }
+  assembler_ = std::make_unique<solver::SparseAssembler>(model::kDofsPerNode, std::move(free_index),
+                                                         model_.element_nodes());
+}
+
+Eigen::VectorXd EquilibriumProblem::unknowns() const {
+  Eigen::VectorXd u(size());
+  for (int i = 0; i < size(); ++i) u[i] = x_[free_dofs_[static_cast<std::size_t>(i)]];
+  return u;
+}
+
+void EquilibriumProblem::set_unknowns(const Eigen::VectorXd& u) {
+  for (int i = 0; i < size(); ++i) x_[free_dofs_[static_cast<std::size_t>(i)]] = u[i];
+}
+
+void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) {
+  model_.internal_force(x_, f_int_, with_tangent ? assembler_.get() : nullptr);
+  f_ext_.setZero(model_.num_dofs());
+  conditions_.external_force(time_, x_, f_ext_);
+  if (with_tangent) conditions_.add_load_tangent(time_, x_, *assembler_);
+  residual_full_ = f_int_ - f_ext_;
+  residual.resize(size());
+  for (int i = 0; i < size(); ++i) residual[i] = residual_full_[free_dofs_[static_cast<std::size_t>(i)]];
+  // Force scale: the applied loads and the support reactions.
+  double reactions = 0.0;
+  for (int i = 0; i < model_.num_dofs(); ++i)
+    if (prescribed_[static_cast<std::size_t>(i)]) reactions += residual_full_[i] * residual_full_[i];
+  residual_tolerance_ =
+      std::max(tolerances_.residual * std::max(f_ext_.norm(), std::sqrt(reactions)), force_floor_);
+}
+
+double EquilibriumProblem::scaled_increment(const Eigen::VectorXd& du) const {
+  double largest = 0.0;
+  for (int i = 0; i < size(); ++i) {
+    const bool position = free_dofs_[static_cast<std::size_t>(i)] % model::kDofsPerNode < 3;
+    largest = std::max(largest, std::abs(du[i]) / (position ? length_scale_ : 1.0));
+  }
+  return largest;
+}
+
+void EquilibriumProblem::set_time(double t) {
+  time_ = t;
+  conditions_.apply_prescribed(t, x_);
+}
+
+void EquilibriumProblem::commit() {
+  x_committed_ = x_;
+  time_committed_ = time_;
+  conditions_.commit(x_);
+}
+
+void EquilibriumProblem::restore() {
+  x_ = x_committed_;
+  time_ = time_committed_;
+}
+
+}  // namespace nodus::simulation

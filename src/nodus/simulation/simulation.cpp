@@ -1,0 +1,146 @@
+#include "nodus/simulation/simulation.hpp"
+
+#include <chrono>
+#include <numbers>
+
+#include <spdlog/spdlog.h>
+
+#include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/solver/linear_solver.hpp"
+#include "nodus/solver/load_stepping.hpp"
+#include "nodus/solver/newton.hpp"
+
+namespace nodus::simulation {
+namespace {
+
+constexpr double kDegree = std::numbers::pi / 180.0;
+
+model::Model build_model(const scenario::Scenario& s) {
+  model::Model model(s.solver.gauss_points);
+  for (const scenario::BeamSpec& b : s.beams) {
+    const scenario::Material& m = s.materials.at(static_cast<std::size_t>(b.material));
+    model.add_beam({b.name, b.length, b.radius, b.elements, b.start, b.direction, b.director1,
+                    beam::ElasticConstants{m.young_modulus, m.poisson_ratio}, b.bending_factor});
+  }
+  return model;
+}
+
+/// The fixed axis of a load's moment: the direction of its first nonzero value (the reader checked that all
+/// values share it).
+loading::Vec3 moment_axis(const scenario::Scenario& s, int c) {
+  if (s.conditions[static_cast<std::size_t>(c)].moment.norm() > 0)
+    return s.conditions[static_cast<std::size_t>(c)].moment.normalized();
+  for (const scenario::StageSpec& stage : s.stages)
+    for (const scenario::LoadTarget& t : stage.loads)
+      if (t.condition == c && t.moment.norm() > 0) return t.moment.normalized();
+  return loading::Vec3::UnitZ();
+}
+
+loading::Conditions build_conditions(const scenario::Scenario& s, const model::Model& model) {
+  loading::Conditions conditions;
+  for (int c = 0; c < static_cast<int>(s.conditions.size()); ++c) {
+    const scenario::ConditionSpec& spec = s.conditions[static_cast<std::size_t>(c)];
+    const int node = model.beam(spec.beam).node(spec.node);
+    if (spec.type == scenario::ConditionType::load) {
+      const loading::Vec3 axis = moment_axis(s, c);
+      conditions.add_load(spec.name, node, spec.force, axis, spec.moment.dot(axis));
+    } else {
+      conditions.add_motion(spec.name, node, spec.dofs);
+    }
+  }
+  return conditions;
+}
+
+solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind) {
+  return kind == scenario::LinearSolverKind::umfpack ? solver::LinearSolverKind::umfpack
+                                                     : solver::LinearSolverKind::cholmod;
+}
+
+}  // namespace
+
+Simulation::Simulation(scenario::Scenario scenario)
+    : scenario_(std::move(scenario)),
+      model_(build_model(scenario_)),
+      conditions_(build_conditions(scenario_, model_)) {
+  for (int c = 0; c < conditions_.size(); ++c)
+    if (scenario_.conditions[static_cast<std::size_t>(c)].initially_active)
+      conditions_.activate(c, 0.0, model_.reference());
+  problem_ = std::make_unique<EquilibriumProblem>(
+      model_, conditions_,
+      Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
+}
+
+Simulation::~Simulation() = default;
+
+const Eigen::VectorXd& Simulation::state() const {
+  return problem_->committed_state();
+}
+
+double Simulation::stage_end_time(int stage) const {
+  double t = 0.0;
+  for (int i = 0; i <= stage; ++i) t += scenario_.stages.at(static_cast<std::size_t>(i)).duration;
+  return t;
+}
+
+RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
+  const auto start = std::chrono::steady_clock::now();
+  RunSummary summary;
+  auto linear = solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver));
+  solver::NewtonSolver newton(*linear,
+                              {scenario_.solver.max_newton_iterations, scenario_.solver.line_search});
+  for (StepObserver* o : observers) o->on_start(*this);
+
+  for (int s = 0; s < static_cast<int>(scenario_.stages.size()); ++s) {
+    const scenario::StageSpec& stage = scenario_.stages[static_cast<std::size_t>(s)];
+    const double t0 = time_, t1 = time_ + stage.duration;
+    for (int c : stage.release) conditions_.release(c);
+    for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
+    conditions_.hold_until(t0);
+    for (const scenario::MotionTarget& m : stage.motions)
+      for (const scenario::Keyframe& k : m.keyframes)
+        conditions_.add_motion_keyframe(m.condition, t0 + k.at * stage.duration, k.translation,
+                                        kDegree * k.rotation);
+    for (const scenario::LoadTarget& l : stage.loads) {
+      const int c = l.condition;
+      conditions_.add_load_keyframe(c, t1, l.force, l.moment.dot(moment_axis(scenario_, c)));
+    }
+    try {
+      problem_->update_free_set();
+    } catch (const std::exception& e) {
+      summary.failure = "stage '" + stage.name + "': " + e.what();
+      break;
+    }
+    newton.reanalyze();
+    for (StepObserver* o : observers) o->on_stage(*this, s);
+
+    solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
+                                scenario_.solver.easy_iterations};
+    const solver::AdvanceResult result =
+        solver::advance(*problem_, newton, t0, t1, control, [&](const solver::StepResult& r) {
+          time_ = r.time;
+          StepRecord record;
+          record.step = ++summary.steps;
+          record.stage = s;
+          record.time = r.time;
+          record.newton_iterations = r.newton.iterations;
+          record.cutbacks = r.cutbacks;
+          record.residual = r.newton.residual;
+          record.increment = r.newton.increment;
+          summary.newton_iterations += r.newton.iterations;
+          for (int c = 0; c < conditions_.size(); ++c)
+            record.sections.push_back(
+                conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
+          for (StepObserver* o : observers) o->on_step(*this, record);
+        });
+    if (!result.completed) {
+      summary.failure = "stage '" + stage.name + "': " + result.failure;
+      break;
+    }
+  }
+  summary.converged = summary.failure.empty();
+  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  for (StepObserver* o : observers) o->on_finish(*this, summary);
+  return summary;
+}
+
+}  // namespace nodus::simulation

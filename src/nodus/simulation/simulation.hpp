@@ -1,0 +1,78 @@
+#pragma once
+/// The global algorithm of a quasi-static run [Durville 2012, Sect. 6]: the loading program's stages, each
+/// divided into load steps, each solved by Newton-Raphson. (Contact loops come with the contact issues.)
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nodus/loading/boundary_conditions.hpp"
+#include "nodus/model/model.hpp"
+#include "nodus/scenario/scenario.hpp"
+
+namespace nodus::simulation {
+
+class EquilibriumProblem;
+
+/// One converged load step.
+struct StepRecord {
+  int step = 0;       ///< 1, 2, ... over the whole run
+  int stage = 0;      ///< index into Scenario::stages
+  double time = 0.0;  ///< load time at the end of the step [s]
+  int newton_iterations = 0;
+  int cutbacks = 0;                             ///< halvings of the step before it converged
+  double residual = 0.0;                        ///< |R| over the free unknowns at convergence [N]
+  double increment = 0.0;                       ///< scaled size of the last Newton increment [-]
+  std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)
+};
+
+struct RunSummary {
+  bool converged = false;  ///< every stage completed
+  int steps = 0;
+  int newton_iterations = 0;
+  double wall_seconds = 0.0;
+  std::string failure;  ///< why the run stopped early
+};
+
+class Simulation;
+
+/// Receives the run's progress; output writers implement it.
+class StepObserver {
+ public:
+  virtual ~StepObserver() = default;
+  virtual void on_start(const Simulation& /*sim*/) {}
+  virtual void on_stage(const Simulation& /*sim*/, int /*stage*/) {}
+  /// Called after each converged step; sim.state() is the converged state.
+  virtual void on_step(const Simulation& /*sim*/, const StepRecord& /*record*/) {}
+  virtual void on_finish(const Simulation& /*sim*/, const RunSummary& /*summary*/) {}
+};
+
+class Simulation {
+ public:
+  explicit Simulation(scenario::Scenario scenario);
+  ~Simulation();
+
+  const scenario::Scenario& scenario() const { return scenario_; }
+  const model::Model& model() const { return model_; }
+  const loading::Conditions& conditions() const { return conditions_; }
+  /// The last converged state: nine values (r, g1, g2) per node.
+  const Eigen::VectorXd& state() const;
+  /// Load time of the last converged state [s].
+  double time() const { return time_; }
+  /// Load time at the end of each stage [s].
+  double stage_end_time(int stage) const;
+
+  /// Runs every stage. Observers are called in order.
+  RunSummary run(const std::vector<StepObserver*>& observers);
+
+ private:
+  scenario::Scenario scenario_;
+  model::Model model_;
+  loading::Conditions conditions_;
+  std::unique_ptr<EquilibriumProblem> problem_;
+  double time_ = 0.0;
+};
+
+}  // namespace nodus::simulation

@@ -1,0 +1,35 @@
+#pragma once
+/// Sparse direct solvers behind one interface. The pattern is analysed once (fill-reducing ordering) and each
+/// Newton iteration only refactorises numerically.
+
+#include <memory>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "nodus/solver/sparse_assembler.hpp"
+
+namespace nodus::solver {
+
+class LinearSolver {
+ public:
+  virtual ~LinearSolver() = default;
+  /// Symbolic analysis of the pattern of `a`; must be called again when the pattern changes.
+  virtual void analyze(const SparseMatrix& a) = 0;
+  /// Numerical factorisation; returns false if the matrix is singular to working precision.
+  virtual bool factorize(const SparseMatrix& a) = 0;
+  /// Solves a x = b with the last factorisation.
+  virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
+  virtual std::string name() const = 0;
+};
+
+enum class LinearSolverKind {
+  cholmod,  ///< CHOLMOD supernodal LL^T, falling back to simplicial LDL^T when the matrix is not positive
+            ///< definite (buckled states); METIS ordering
+  cholmod_ldlt,  ///< CHOLMOD simplicial LDL^T only
+  umfpack,       ///< UMFPACK LU with partial pivoting
+};
+
+std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind);
+
+}  // namespace nodus::solver

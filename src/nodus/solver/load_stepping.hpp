@@ -1,0 +1,48 @@
+#pragma once
+/// Load stepping over a load-time interval with automatic cutback when Newton fails and growth when it
+/// converges easily, and a secant predictor.
+
+#include <functional>
+#include <string>
+
+#include "nodus/solver/newton.hpp"
+#include "nodus/solver/nonlinear_problem.hpp"
+
+namespace nodus::solver {
+
+/// A nonlinear problem driven by a load time, whose converged states can be committed and restored.
+class SteppedProblem : public NonlinearProblem {
+ public:
+  /// Sets the loads and prescribed values of load time t (the free unknowns keep their values).
+  virtual void set_time(double t) = 0;
+  /// Accepts the current state as converged at the current time (updates history variables).
+  virtual void commit() = 0;
+  /// Returns to the last committed state.
+  virtual void restore() = 0;
+};
+
+struct StepControl {
+  double nominal_step = 1.0;  ///< the user's step in load time; steps never grow beyond it
+  int max_cutbacks = 12;      ///< successive halvings of a failing step before giving up
+  int easy_iterations = 4;    ///< a step converged in at most this many iterations lets the next one grow
+  double growth = 2.0;        ///< factor of growth after an easy step
+};
+
+struct StepResult {
+  double time;
+  double step;
+  int cutbacks;  ///< halvings before this step converged
+  NewtonReport newton;
+};
+
+struct AdvanceResult {
+  bool completed = false;
+  int steps = 0;
+  std::string failure;
+};
+
+/// Advances from t0 to t1. After each converged step the problem is committed and `on_step` is called.
+AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, double t1,
+                      const StepControl& control, const std::function<void(const StepResult&)>& on_step);
+
+}  // namespace nodus::solver

@@ -1,0 +1,42 @@
+#pragma once
+/// Newton-Raphson with a line search on the slope of the energy along the Newton direction.
+
+#include <string>
+
+#include "nodus/solver/linear_solver.hpp"
+#include "nodus/solver/nonlinear_problem.hpp"
+
+namespace nodus::solver {
+
+struct NewtonSettings {
+  int max_iterations = 25;
+  bool line_search = true;
+  int max_line_search_iterations = 6;
+  /// The step is accepted once |du . R(u + alpha du)| <= slope_ratio |du . R(u)|.
+  double slope_ratio = 0.5;
+};
+
+struct NewtonReport {
+  bool converged = false;
+  int iterations = 0;
+  double residual = 0.0;   ///< |R| at the end [residual units]
+  double increment = 0.0;  ///< scaled size of the last increment
+  std::string failure;     ///< why it did not converge
+};
+
+class NewtonSolver {
+ public:
+  NewtonSolver(LinearSolver& linear_solver, NewtonSettings settings)
+      : linear_(linear_solver), settings_(settings) {}
+  /// Iterates from the problem's current unknowns. Convergence needs both |R| <= residual_tolerance and
+  /// scaled |du| <= increment_tolerance. Call reanalyze() when the tangent pattern changes.
+  NewtonReport solve(NonlinearProblem& problem);
+  void reanalyze() { analyzed_ = false; }
+
+ private:
+  LinearSolver& linear_;
+  NewtonSettings settings_;
+  bool analyzed_ = false;
+};
+
+}  // namespace nodus::solver

@@ -1,0 +1,46 @@
+// A cantilever under an end moment bends into a circular arc of curvature M / EI: M = 2 pi EI / L closes it
+// into a full circle (the tip returns to the root), M = pi EI / L makes a half circle with the tip at
+// (0, 2 L / pi) from the root.
+
+#include <gtest/gtest.h>
+
+#include "cantilever.hpp"
+
+namespace nodus::verification {
+namespace {
+
+Eigen::Vector3d tip_under_moment(const BeamCase& c, double moment, int steps) {
+  scenario::Scenario s = single_beam(c);
+  add_condition(s, "root", scenario::ConditionType::clamp, false);
+  const int tip = add_condition(s, "tip", scenario::ConditionType::load, true);
+  scenario::StageSpec stage;
+  stage.name = "bend";
+  stage.steps = steps;
+  stage.loads.push_back({tip, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, moment)});
+  s.stages.push_back(stage);
+  simulation::Simulation sim(s);
+  const simulation::RunSummary summary = run_quietly(sim);
+  EXPECT_TRUE(summary.converged) << summary.failure;
+  return centre(sim, 2 * c.elements) - centre(sim, 0);
+}
+
+TEST(EndMoment, FullCircle) {
+  const BeamCase c;
+  const Eigen::Vector3d tip = tip_under_moment(c, 2 * std::numbers::pi * c.ei() / c.length, 20);
+  RecordProperty("tip_distance_over_L", std::to_string(tip.norm() / c.length));
+  std::printf("full circle: |tip - root| / L = %.3e\n", tip.norm() / c.length);
+  EXPECT_LT(tip.norm(), 1e-3 * c.length);
+}
+
+TEST(EndMoment, HalfCircle) {
+  const BeamCase c;
+  const Eigen::Vector3d tip = tip_under_moment(c, std::numbers::pi * c.ei() / c.length, 10);
+  const Eigen::Vector3d expected(0, 2 * c.length / std::numbers::pi, 0);
+  std::printf("half circle: tip / L = (%.6f, %.6f, %.6f), expected (0, %.6f, 0), error / L = %.3e\n",
+              tip.x() / c.length, tip.y() / c.length, tip.z() / c.length, 2 / std::numbers::pi,
+              (tip - expected).norm() / c.length);
+  EXPECT_LT((tip - expected).norm(), 1e-3 * c.length);
+}
+
+}  // namespace
+}  // namespace nodus::verification
