@@ -3,6 +3,7 @@
 #include <chrono>
 #include <numbers>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 #include "nodus/simulation/equilibrium_problem.hpp"
@@ -49,6 +50,35 @@ loading::Conditions build_conditions(const scenario::Scenario& s, const model::M
     }
   }
   return conditions;
+}
+
+/// Checks, before anything runs, that no two conditions active together prescribe the same unknown.
+void check_activation(const scenario::Scenario& s, const model::Model& model) {
+  std::vector<bool> active(s.conditions.size());
+  for (std::size_t c = 0; c < s.conditions.size(); ++c) active[c] = s.conditions[c].initially_active;
+  for (std::size_t i = 0; i < s.stages.size(); ++i) {
+    const scenario::StageSpec& stage = s.stages[i];
+    for (int c : stage.release) active[static_cast<std::size_t>(c)] = false;
+    for (int c : stage.activate) active[static_cast<std::size_t>(c)] = true;
+    std::vector<int> owner(static_cast<std::size_t>(model.num_dofs()), -1);
+    for (std::size_t c = 0; c < s.conditions.size(); ++c) {
+      const scenario::ConditionSpec& spec = s.conditions[c];
+      if (!active[c] || spec.type == scenario::ConditionType::load) continue;
+      const int node = model.beam(spec.beam).node(spec.node);
+      for (int d = 0; d < model::kDofsPerNode; ++d) {
+        if (!spec.dofs[static_cast<std::size_t>(d)]) continue;
+        int& o = owner[static_cast<std::size_t>(model::kDofsPerNode * node + d)];
+        if (o >= 0)
+          throw scenario::ScenarioError(
+              fmt::format("{}:{}: conditions[{}].dofs: expected no unknown prescribed by two active "
+                          "conditions, got '{}' and '{}' "
+                          "both prescribing unknown {} of node {} of beam '{}' in stage '{}'",
+                          s.path, spec.line, c, s.conditions[static_cast<std::size_t>(o)].name, spec.name, d,
+                          spec.node, s.beams[static_cast<std::size_t>(spec.beam)].name, stage.name));
+        o = static_cast<int>(c);
+      }
+    }
+  }
 }
 
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind) {

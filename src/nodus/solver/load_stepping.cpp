@@ -29,7 +29,7 @@ AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, 
     if (!report.converged) {
       problem.restore();
       if (cutbacks >= control.max_cutbacks) {
-        result.failure = fmt::format("step from load time {:.6g} to {:.6g} failed after {} cutbacks: {}", t,
+        result.failure = fmt::format("step from load time {:.9g} to {:.9g} failed after {} cutbacks: {}", t,
                                      t + step, cutbacks, report.failure);
         return result;
       }

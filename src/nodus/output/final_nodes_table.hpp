@@ -1,0 +1,24 @@
+#pragma once
+/// The nodal table of a state: one CSV row per node of every beam with its reference abscissa and its nine
+/// unknowns (centre r and directors g1, g2). Written as DIR/final_nodes.csv at the end of a run.
+
+#include <filesystem>
+#include <string>
+
+#include <Eigen/Core>
+
+#include "nodus/model/model.hpp"
+
+namespace nodus::output {
+
+/// The whole CSV text: header `beam,node,s,x,y,z,g1x,g1y,g1z,g2x,g2y,g2z`, then per beam (model order) per
+/// local node: beam name, local node index, reference arc length s [mm], r [mm], g1 [-], g2 [-] (twelve
+/// significant digits). `x` holds nine values per node (Model numbering). Throws std::invalid_argument on a
+/// size mismatch.
+std::string final_nodes_csv(const model::Model& model, const Eigen::VectorXd& x);
+
+/// Writes final_nodes_csv(model, x) to `path` through a temporary file and a rename.
+void write_final_nodes(const std::filesystem::path& path, const model::Model& model,
+                       const Eigen::VectorXd& x);
+
+}  // namespace nodus::output

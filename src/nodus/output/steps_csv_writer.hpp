@@ -1,0 +1,49 @@
+#pragma once
+/// DIR/steps.csv: one row per converged load step (step counters, Newton statistics and the force and moment
+/// on every condition's section). Columns are documented in docs/output.md.
+
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "nodus/simulation/simulation.hpp"
+
+namespace nodus::output {
+
+/// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment, then
+/// NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
+std::string steps_csv_header(const std::vector<std::string>& condition_names);
+
+/// One data line (no line end) for `record`, the stage column holding `stage_name`; numbers with ten
+/// significant digits: time [s], residual [N], increment [-], forces [N], moments [N mm]. Sections missing
+/// from the record (fewer than `num_conditions`) give empty fields.
+std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
+                          int num_conditions);
+
+/// Writes DIR/steps.csv: the header at the start of the run, a row per converged step, each row flushed at
+/// once so that an interrupted run keeps its rows. Throws std::runtime_error naming the file on I/O errors.
+class StepsCsvWriter : public simulation::StepObserver {
+ public:
+  /// `dir`: output folder, created if missing.
+  explicit StepsCsvWriter(std::filesystem::path dir);
+  ~StepsCsvWriter() override;
+  StepsCsvWriter(const StepsCsvWriter&) = delete;
+  StepsCsvWriter& operator=(const StepsCsvWriter&) = delete;
+
+  void on_start(const simulation::Simulation& sim) override;
+  void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
+  void on_finish(const simulation::Simulation& sim, const simulation::RunSummary& summary) override;
+
+  /// DIR/steps.csv.
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  void write_line(const std::string& line);
+
+  std::filesystem::path dir_;
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+};
+
+}  // namespace nodus::output

@@ -1,0 +1,244 @@
+#include "nodus/output/vtk_format.hpp"
+
+#include <cmath>
+#include <numbers>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "nodus/beam/strain_measures.hpp"
+#include "nodus/output/atomic_file.hpp"
+
+namespace nodus::output {
+namespace {
+
+constexpr int kNode = model::kDofsPerNode;
+
+void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_sides) {
+  if (x.size() != model.num_dofs())
+    throw std::invalid_argument(
+        fmt::format("VTK output: state has {} values, the model {} unknowns", x.size(), model.num_dofs()));
+  if (tube_sides < 3)
+    throw std::invalid_argument(fmt::format("VTK output: tube_sides = {}, must be >= 3", tube_sides));
+}
+
+/// Appends formatted values to a buffer and hands it to the stream in chunks.
+class ChunkedWriter {
+ public:
+  explicit ChunkedWriter(std::ostream& out) : out_(out) {}
+  ~ChunkedWriter() { flush(); }
+  ChunkedWriter(const ChunkedWriter&) = delete;
+  ChunkedWriter& operator=(const ChunkedWriter&) = delete;
+
+  template <typename... Args>
+  void print(fmt::format_string<Args...> format, Args&&... args) {
+    fmt::format_to(std::back_inserter(buffer_), format, std::forward<Args>(args)...);
+    if (buffer_.size() > (1u << 20)) flush();
+  }
+  void flush() {
+    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
+    buffer_.clear();
+  }
+
+ private:
+  std::ostream& out_;
+  fmt::memory_buffer buffer_;
+};
+
+/// A point-data array with one value (or 3-vector) per node, repeated for the node's ring points.
+template <typename ValueOfNode>
+void node_array(ChunkedWriter& w, const char* type, const char* name, int components, int num_nodes,
+                int tube_sides, ValueOfNode value_of_node) {
+  if (components == 1)
+    w.print("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
+  else
+    w.print("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n", type,
+            name, components);
+  for (int n = 0; n < num_nodes; ++n) {
+    value_of_node(n);
+    w.print("\n");
+  }
+  for (int n = 0; n < num_nodes; ++n)
+    for (int j = 0; j < tube_sides; ++j) {
+      value_of_node(n);
+      w.print("\n");
+    }
+  w.print("        </DataArray>\n");
+}
+
+void index_array(ChunkedWriter& w, const char* name, const std::vector<std::int64_t>& values) {
+  w.print("        <DataArray type=\"Int64\" Name=\"{}\" format=\"ascii\">\n", name);
+  for (std::size_t i = 0; i < values.size(); ++i) w.print("{}{}", values[i], i % 16 == 15 ? '\n' : ' ');
+  w.print("\n        </DataArray>\n");
+}
+
+}  // namespace
+
+TubeMesh tube_mesh(const model::Model& model, const Eigen::VectorXd& x, int tube_sides) {
+  check_inputs(model, x, tube_sides);
+  const int num_nodes = model.num_nodes();
+  TubeMesh mesh;
+  mesh.points.resize(3, static_cast<Eigen::Index>(num_nodes) * (1 + tube_sides));
+  mesh.point_node.resize(static_cast<std::size_t>(mesh.points.cols()));
+  std::vector<double> cosines(static_cast<std::size_t>(tube_sides)),
+      sines(static_cast<std::size_t>(tube_sides));
+  for (int j = 0; j < tube_sides; ++j) {
+    const double phi = 2.0 * std::numbers::pi * j / tube_sides;
+    cosines[static_cast<std::size_t>(j)] = std::cos(phi);
+    sines[static_cast<std::size_t>(j)] = std::sin(phi);
+  }
+  for (const beam::Beam& b : model.beams()) {
+    const double radius = b.radius();
+    for (int i = 0; i < b.num_nodes(); ++i) {
+      const int n = b.node(i);
+      const Eigen::Index first = static_cast<Eigen::Index>(kNode) * n;
+      const Eigen::Vector3d r = x.segment<3>(first);
+      const Eigen::Vector3d g1 = x.segment<3>(first + 3);
+      const Eigen::Vector3d g2 = x.segment<3>(first + 6);
+      mesh.points.col(n) = r;
+      mesh.point_node[static_cast<std::size_t>(n)] = n;
+      for (int j = 0; j < tube_sides; ++j) {
+        const std::int64_t p = ring_point_index(num_nodes, tube_sides, n, j);
+        mesh.points.col(p) = r + radius * (cosines[static_cast<std::size_t>(j)] * g1 +
+                                           sines[static_cast<std::size_t>(j)] * g2);
+        mesh.point_node[static_cast<std::size_t>(p)] = n;
+      }
+    }
+    for (int i = 0; i < b.num_nodes(); ++i) mesh.line_connectivity.push_back(b.node(i));
+    mesh.line_offsets.push_back(static_cast<std::int64_t>(mesh.line_connectivity.size()));
+    // Quad (a_j, a_j+1, b_j+1, b_j): with g1 x g2 along the axis its normal points outwards.
+    for (int i = 0; i + 1 < b.num_nodes(); ++i) {
+      const int na = b.node(i), nb = b.node(i + 1);
+      for (int j = 0; j < tube_sides; ++j) {
+        const int k = (j + 1) % tube_sides;
+        for (std::int64_t p :
+             {ring_point_index(num_nodes, tube_sides, na, j), ring_point_index(num_nodes, tube_sides, na, k),
+              ring_point_index(num_nodes, tube_sides, nb, k), ring_point_index(num_nodes, tube_sides, nb, j)})
+          mesh.poly_connectivity.push_back(p);
+        mesh.poly_offsets.push_back(static_cast<std::int64_t>(mesh.poly_connectivity.size()));
+      }
+    }
+  }
+  return mesh;
+}
+
+void write_vtp(std::ostream& out, const model::Model& model, const Eigen::VectorXd& x, int tube_sides,
+               std::optional<double> time) {
+  const TubeMesh mesh = tube_mesh(model, x, tube_sides);
+  const auto strains = model.node_strains(x);
+  const int num_nodes = model.num_nodes();
+  std::vector<int> beam_of_node(static_cast<std::size_t>(num_nodes), 0);
+  for (int b = 0; b < static_cast<int>(model.beams().size()); ++b)
+    for (int i = 0; i < model.beam(b).num_nodes(); ++i)
+      beam_of_node[static_cast<std::size_t>(model.beam(b).node(i))] = b;
+
+  ChunkedWriter w(out);
+  w.print("<?xml version=\"1.0\"?>\n");
+  w.print("<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
+  w.print("  <PolyData>\n");
+  if (time) {
+    w.print("    <FieldData>\n");
+    w.print(
+        "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}"
+        "</DataArray>\n",
+        *time);
+    w.print("    </FieldData>\n");
+  }
+  w.print(
+      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
+      "NumberOfPolys=\"{}\">\n",
+      mesh.points.cols(), mesh.line_offsets.size(), mesh.poly_offsets.size());
+
+  w.print("      <PointData Scalars=\"beam\" Vectors=\"displacement\">\n");
+  node_array(w, "Int32", "beam", 1, num_nodes, tube_sides,
+             [&](int n) { w.print("{}", beam_of_node[static_cast<std::size_t>(n)]); });
+  node_array(w, "Int32", "node", 1, num_nodes, tube_sides, [&](int n) { w.print("{}", n); });
+  const Eigen::VectorXd& ref = model.reference();
+  node_array(w, "Float64", "displacement", 3, num_nodes, tube_sides, [&](int n) {
+    const Eigen::Index f = static_cast<Eigen::Index>(kNode) * n;
+    w.print("{:.12g} {:.12g} {:.12g}", x[f] - ref[f], x[f + 1] - ref[f + 1], x[f + 2] - ref[f + 2]);
+  });
+  for (int d = 0; d < 2; ++d)
+    node_array(w, "Float64", d == 0 ? "g1" : "g2", 3, num_nodes, tube_sides, [&](int n) {
+      const Eigen::Index f = static_cast<Eigen::Index>(kNode) * n + 3 + 3 * d;
+      w.print("{:.12g} {:.12g} {:.12g}", x[f], x[f + 1], x[f + 2]);
+    });
+  for (int k = 0; k < beam::kNumStrains; ++k)
+    node_array(w, "Float64", beam::strain_name(k), 1, num_nodes, tube_sides,
+               [&](int n) { w.print("{:.12g}", strains(k, n)); });
+  w.print("      </PointData>\n");
+
+  w.print("      <Points>\n");
+  w.print("        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n");
+  for (Eigen::Index p = 0; p < mesh.points.cols(); ++p)
+    w.print("{:.12g} {:.12g} {:.12g}\n", mesh.points(0, p), mesh.points(1, p), mesh.points(2, p));
+  w.print("        </DataArray>\n");
+  w.print("      </Points>\n");
+
+  w.print("      <Lines>\n");
+  index_array(w, "connectivity", mesh.line_connectivity);
+  index_array(w, "offsets", mesh.line_offsets);
+  w.print("      </Lines>\n");
+  w.print("      <Polys>\n");
+  index_array(w, "connectivity", mesh.poly_connectivity);
+  index_array(w, "offsets", mesh.poly_offsets);
+  w.print("      </Polys>\n");
+
+  w.print("    </Piece>\n");
+  w.print("  </PolyData>\n");
+  w.print("</VTKFile>\n");
+}
+
+void write_vtp(const std::filesystem::path& path, const model::Model& model, const Eigen::VectorXd& x,
+               int tube_sides, std::optional<double> time) {
+  AtomicFile file(path);
+  write_vtp(file.stream(), model, x, tube_sides, time);
+  file.commit();
+}
+
+std::string xml_escape(const std::string& text) {
+  std::string escaped;
+  escaped.reserve(text.size());
+  for (char c : text) {
+    switch (c) {
+      case '&':
+        escaped += "&amp;";
+        break;
+      case '<':
+        escaped += "&lt;";
+        break;
+      case '>':
+        escaped += "&gt;";
+        break;
+      case '"':
+        escaped += "&quot;";
+        break;
+      case '\'':
+        escaped += "&apos;";
+        break;
+      default:
+        escaped += c;
+    }
+  }
+  return escaped;
+}
+
+std::string pvd_document(const std::vector<PvdEntry>& entries) {
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out),
+                 "<?xml version=\"1.0\"?>\n"
+                 "<VTKFile type=\"Collection\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+                 "  <Collection>\n");
+  for (const PvdEntry& e : entries)
+    fmt::format_to(std::back_inserter(out),
+                   "    <DataSet timestep=\"{}\" group=\"\" part=\"0\" file=\"{}\"/>\n", e.time,
+                   xml_escape(e.file));
+  fmt::format_to(std::back_inserter(out), "  </Collection>\n</VTKFile>\n");
+  return fmt::to_string(out);
+}
+
+void write_pvd(const std::filesystem::path& path, const std::vector<PvdEntry>& entries) {
+  write_file_atomically(path, pvd_document(entries));
+}
+
+}  // namespace nodus::output

@@ -1,0 +1,979 @@
+#include "nodus/scenario/scenario.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <charconv>
+#include <cmath>
+#include <cstring>
+#include <filesystem>
+#include <fstream>
+#include <limits>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <yaml-cpp/yaml.h>
+#include <Eigen/Geometry>
+
+#include "nodus/scenario/keys.hpp"
+
+namespace nodus::scenario {
+
+namespace {
+
+/// director1 may not be within this |sin angle| of direction.
+constexpr double kDirectorParallelTolerance = 1e-6;
+/// Nonzero moments of one load must be parallel within this |sin angle|.
+constexpr double kMomentAxisTolerance = 1e-9;
+/// Upper limit of beams[].elements, so that node indices 2 * elements fit an int with room to spare.
+constexpr int kMaxElements = 100'000'000;
+/// Names shown in a "the name of a ... (a | b | ...)" message before it is cut short.
+constexpr std::size_t kMaxNamesShown = 12;
+
+constexpr std::string_view kDofNames[] = {"x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"};
+
+std::string format_number(double value) {
+  return fmt::format("{}", value + 0.0);
+}  // + 0.0: no "-0"
+
+std::string format_vec(const Vec3& v) {
+  return fmt::format("[{}, {}, {}]", format_number(v.x()), format_number(v.y()), format_number(v.z()));
+}
+
+/// Makes a value printable on one line: escapes line breaks, cuts long text.
+std::string one_line(std::string text) {
+  std::string out;
+  for (char c : text) {
+    if (c == '\n') {
+      out += "\\n";
+    } else if (c == '\r') {
+      out += "\\r";
+    } else if (c == '\t') {
+      out += "\\t";
+    } else {
+      out += c;
+    }
+  }
+  if (out.size() > 80) out = out.substr(0, 77) + "...";
+  return out;
+}
+
+bool is_plain_scalar(const YAML::Node& node) {
+  return node.IsScalar() && node.Tag() == "?";
+}
+
+/// What a message shows as "got ...".
+std::string render(const YAML::Node& node) {
+  if (!node.IsDefined()) return "nothing";
+  switch (node.Type()) {
+    case YAML::NodeType::Null:
+      return "nothing (null)";
+    case YAML::NodeType::Scalar:
+      if (!is_plain_scalar(node) || node.Scalar().empty()) return one_line("\"" + node.Scalar() + "\"");
+      return one_line(node.Scalar());
+    case YAML::NodeType::Sequence: {
+      const bool short_scalars =
+          node.size() <= 6 && std::all_of(node.begin(), node.end(), [](const YAML::Node& item) {
+            return item.IsScalar() && item.Scalar().size() <= 20;
+          });
+      if (!short_scalars) return fmt::format("a list of {} items", node.size());
+      std::string out = "[";
+      for (std::size_t i = 0; i < node.size(); ++i) out += (i > 0 ? ", " : "") + render(node[i]);
+      return one_line(out + "]");
+    }
+    case YAML::NodeType::Map:
+      return "a map";
+    default:
+      return "nothing";
+  }
+}
+
+int line_of(const YAML::Node& node, int fallback) {
+  const YAML::Mark mark = node.Mark();
+  return mark.line >= 0 ? mark.line + 1 : fallback;
+}
+
+std::optional<double> parse_number(const YAML::Node& node) {
+  if (!is_plain_scalar(node)) return std::nullopt;
+  std::string_view text = node.Scalar();
+  if (text.empty() || text.find_first_not_of("0123456789+-.eE") != std::string_view::npos)
+    return std::nullopt;
+  if (text.front() == '+') text.remove_prefix(1);
+  double value = 0.0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size() || !std::isfinite(value)) return std::nullopt;
+  return value;
+}
+
+std::optional<long long> parse_integer(const YAML::Node& node) {
+  if (!is_plain_scalar(node)) return std::nullopt;
+  std::string_view text = node.Scalar();
+  if (!text.empty() && text.front() == '+') text.remove_prefix(1);
+  if (text.empty() || text.find_first_not_of("0123456789-") != std::string_view::npos) return std::nullopt;
+  long long value = 0;
+  const auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+  if (error != std::errc{} || end != text.data() + text.size()) return std::nullopt;
+  return value;
+}
+
+/// "a | b | c", cut short after kMaxNamesShown names.
+std::string name_list(const std::vector<std::string>& names) {
+  if (names.empty()) return "none defined";
+  std::string out;
+  for (std::size_t i = 0; i < names.size() && i < kMaxNamesShown; ++i) out += (i > 0 ? " | " : "") + names[i];
+  if (names.size() > kMaxNamesShown) out += " | ...";
+  return out;
+}
+
+std::vector<std::string_view> split_choices(std::string_view range) {
+  std::vector<std::string_view> out;
+  while (true) {
+    const auto bar = range.find(" | ");
+    out.push_back(range.substr(0, bar));
+    if (bar == std::string_view::npos) return out;
+    range.remove_prefix(bar + 3);
+  }
+}
+
+std::string_view type_name(ConditionType type) {
+  switch (type) {
+    case ConditionType::clamp:
+      return "clamp";
+    case ConditionType::motion:
+      return "motion";
+    case ConditionType::load:
+      return "load";
+  }
+  return "?";
+}
+
+/// A value in the file: the node, its full key path, its pattern in the key table and its line.
+struct Field {
+  YAML::Node node;
+  std::string path;
+  std::string pattern;
+  int line = 0;
+};
+
+/// Throws the one-line messages "FILE:LINE: KEY: expected WHAT, got VALUE" and reads typed values.
+class Reader {
+ public:
+  explicit Reader(std::string file) : file_(std::move(file)) {}
+
+  [[noreturn]] void fail(int line, std::string_view key, std::string_view expected,
+                         std::string_view got) const {
+    throw ScenarioError(fmt::format("{}:{}: {}: expected {}, got {}", file_, line, key, expected, got));
+  }
+  [[noreturn]] void fail(const Field& field, std::string_view expected) const {
+    fail(field.line, field.path, expected, render(field.node));
+  }
+  /// Fails with the expectation of the key table.
+  [[noreturn]] void fail(const Field& field) const {
+    fail(field, expected_text(scenario_key(field.pattern)));
+  }
+
+  template <class Ok>
+  double number(const Field& field, Ok ok) const {
+    const auto value = parse_number(field.node);
+    if (!value || !ok(*value)) fail(field);
+    return *value;
+  }
+  double number(const Field& field) const {
+    return number(field, [](double) { return true; });
+  }
+
+  template <class Ok>
+  int integer(const Field& field, Ok ok) const {
+    const auto value = parse_integer(field.node);
+    if (!value || *value < std::numeric_limits<int>::min() || *value > std::numeric_limits<int>::max() ||
+        !ok(static_cast<int>(*value))) {
+      fail(field);
+    }
+    return static_cast<int>(*value);
+  }
+
+  bool boolean(const Field& field) const {
+    if (is_plain_scalar(field.node)) {
+      const std::string& text = field.node.Scalar();
+      if (text == "true" || text == "True" || text == "TRUE") return true;
+      if (text == "false" || text == "False" || text == "FALSE") return false;
+    }
+    fail(field);
+  }
+
+  /// A non-empty scalar.
+  std::string name(const Field& field) const {
+    if (!field.node.IsScalar() || field.node.Scalar().empty()) fail(field);
+    return field.node.Scalar();
+  }
+
+  /// One of the alternatives of the key's range.
+  std::string choice(const Field& field) const {
+    if (is_plain_scalar(field.node)) {
+      for (std::string_view option : split_choices(scenario_key(field.pattern).range)) {
+        if (field.node.Scalar() == option) return std::string(option);
+      }
+    }
+    fail(field);
+  }
+
+  /// A list of exactly three numbers.
+  Vec3 vec(const Field& field) const {
+    if (!field.node.IsSequence() || field.node.size() != 3) fail(field);
+    Vec3 out;
+    for (int i = 0; i < 3; ++i) {
+      const auto value = parse_number(field.node[i]);
+      if (!value) {
+        fail(line_of(field.node[i], field.line), fmt::format("{}[{}]", field.path, i),
+             expected_text(scenario_key(field.pattern)), render(field.node[i]));
+      }
+      out[i] = *value;
+    }
+    return out;
+  }
+
+  /// The items of a list; an optional list may be given as null (empty).
+  std::vector<Field> list(const Field& field, bool non_empty) const {
+    std::vector<Field> items;
+    if (field.node.IsNull() && !non_empty) return items;
+    if (!field.node.IsSequence() || (non_empty && field.node.size() == 0)) fail(field);
+    for (std::size_t i = 0; i < field.node.size(); ++i) {
+      const YAML::Node item = field.node[i];
+      items.push_back(
+          {item, fmt::format("{}[{}]", field.path, i), field.pattern + "[]", line_of(item, field.line)});
+    }
+    return items;
+  }
+
+ private:
+  std::string file_;
+};
+
+/// A map of the file: checks for duplicate keys and, unless its keys are free names, for unknown keys.
+class MapView {
+ public:
+  struct Entry {
+    std::string key;
+    YAML::Node value;
+    int line = 0;  ///< line of the key
+  };
+
+  /// `free_keys`: the keys are user names (e.g. condition names), their values have pattern
+  /// field.pattern + ".<condition>".
+  MapView(const Reader& reader, Field field, bool free_keys = false)
+      : reader_(reader), field_(std::move(field)), free_keys_(free_keys) {
+    std::vector<std::string_view> allowed;
+    if (!free_keys_) {
+      for (const KeyDoc& key : scenario_keys()) {
+        if (parent_pattern(key.path) == field_.pattern) allowed.push_back(leaf_name(key.path));
+      }
+    }
+    const std::string allowed_text = [&] {
+      std::string out;
+      for (std::size_t i = 0; i < allowed.size(); ++i) out += (i > 0 ? " | " : "") + std::string(allowed[i]);
+      return out;
+    }();
+
+    const KeyDoc* doc = find_doc(field_.pattern);
+    if (field_.node.IsNull() && doc != nullptr && doc->default_value != "required") return;  // empty map
+    if (!field_.node.IsMap()) {
+      if (doc != nullptr) reader_.fail(field_);
+      reader_.fail(field_, "a map with the keys " + allowed_text);
+    }
+    std::map<std::string, int> seen;
+    for (auto it = field_.node.begin(); it != field_.node.end(); ++it) {
+      const YAML::Node key = it->first;
+      const int line = line_of(key, field_.line);
+      if (!key.IsScalar() || key.Scalar().empty()) {
+        reader_.fail(line, field_.path.empty() ? "top level" : field_.path, "a key name", render(key));
+      }
+      const std::string& name = key.Scalar();
+      const std::string path = child_path(name);
+      if (const auto previous = seen.find(name); previous != seen.end()) {
+        reader_.fail(line, path, fmt::format("each key once (first given at line {})", previous->second),
+                     "a repeated key");
+      }
+      if (!free_keys_ && std::find(allowed.begin(), allowed.end(), name) == allowed.end()) {
+        reader_.fail(line, path, "one of the keys " + allowed_text, "an unknown key");
+      }
+      seen.emplace(name, line);
+      entries_.push_back({name, it->second, line});
+    }
+  }
+
+  int line() const { return field_.line; }
+  const Field& field() const { return field_; }
+  const std::vector<Entry>& entries() const { return entries_; }
+
+  Field field_of(const Entry& entry) const {
+    return {entry.value, child_path(entry.key), child_pattern(entry.key), entry.line};
+  }
+
+  std::optional<Field> get(std::string_view key) const {
+    for (const Entry& entry : entries_) {
+      if (entry.key == key) return field_of(entry);
+    }
+    return std::nullopt;
+  }
+
+  /// The value of a required key; a missing key is reported at the line of the map.
+  Field require(std::string_view key) const {
+    if (auto found = get(key)) return *found;
+    const std::string pattern = child_pattern(std::string(key));
+    reader_.fail(field_.line, child_path(std::string(key)), expected_text(scenario_key(pattern)),
+                 "nothing (missing key)");
+  }
+
+ private:
+  static const KeyDoc* find_doc(std::string_view pattern) {
+    for (const KeyDoc& key : scenario_keys()) {
+      if (key.path == pattern) return &key;
+    }
+    return nullptr;
+  }
+  std::string child_path(const std::string& key) const {
+    return field_.path.empty() ? key : field_.path + "." + key;
+  }
+  std::string child_pattern(const std::string& key) const {
+    if (free_keys_) return field_.pattern + ".<condition>";
+    return field_.pattern.empty() ? key : field_.pattern + "." + key;
+  }
+
+  const Reader& reader_;
+  Field field_;
+  bool free_keys_ = false;
+  std::vector<Entry> entries_;
+};
+
+/// Index of a named item, for uniqueness checks and references.
+struct NameTable {
+  std::vector<std::string> names;
+  std::map<std::string, std::pair<int, int>> index_and_line;
+
+  void add(const Reader& reader, const Field& field, const std::string& name, std::string_view what) {
+    if (const auto found = index_and_line.find(name); found != index_and_line.end()) {
+      reader.fail(
+          field, fmt::format("a name unique among {} (already used at line {})", what, found->second.second));
+    }
+    index_and_line.emplace(name, std::pair{static_cast<int>(names.size()), field.line});
+    names.push_back(name);
+  }
+  std::optional<int> find(const std::string& name) const {
+    const auto found = index_and_line.find(name);
+    if (found == index_and_line.end()) return std::nullopt;
+    return found->second.first;
+  }
+};
+
+/// The unit vector orthogonal to `direction` (unit) made from the coordinate axis least parallel to it.
+Vec3 default_director(const Vec3& direction) {
+  int axis = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(direction[i]) < std::abs(direction[axis])) axis = i;
+  }
+  Vec3 director = Vec3::Unit(axis);
+  director -= director.dot(direction) * direction;
+  return director.normalized();
+}
+
+/// |sin| of the angle between two nonzero vectors.
+double sin_angle(const Vec3& a, const Vec3& b) {
+  return a.cross(b).norm() / (a.norm() * b.norm());
+}
+
+void read_units(const Reader& reader, const MapView& top) {
+  const auto units = top.get("units");
+  if (!units) return;
+  const MapView map(reader, *units);
+  for (const MapView::Entry& entry : map.entries()) reader.choice(map.field_of(entry));
+}
+
+std::vector<Material> read_materials(const Reader& reader, const MapView& top, NameTable& names) {
+  std::vector<Material> materials;
+  for (const Field& item : reader.list(top.require("materials"), true)) {
+    const MapView map(reader, item);
+    Material material;
+    const Field name = map.require("name");
+    material.name = reader.name(name);
+    names.add(reader, name, material.name, "materials");
+    material.young_modulus = reader.number(map.require("young_modulus"), [](double v) { return v > 0.0; });
+    material.poisson_ratio =
+        reader.number(map.require("poisson_ratio"), [](double v) { return v >= 0.0 && v < 0.5; });
+    materials.push_back(material);
+  }
+  return materials;
+}
+
+std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
+                                 NameTable& names) {
+  std::vector<BeamSpec> beams;
+  for (const Field& item : reader.list(top.require("beams"), true)) {
+    const MapView map(reader, item);
+    BeamSpec beam;
+    const Field name = map.require("name");
+    beam.name = reader.name(name);
+    names.add(reader, name, beam.name, "beams");
+
+    const Field material = map.require("material");
+    const auto material_index = materials.find(reader.name(material));
+    if (!material_index) {
+      reader.fail(material, fmt::format("the name of a material ({})", name_list(materials.names)));
+    }
+    beam.material = *material_index;
+
+    beam.radius = reader.number(map.require("radius"), [](double v) { return v > 0.0; });
+    beam.length = reader.number(map.require("length"), [](double v) { return v > 0.0; });
+    const Field elements = map.require("elements");
+    beam.elements = reader.integer(elements, [](int v) { return v >= 1; });
+    if (beam.elements > kMaxElements) {
+      reader.fail(elements,
+                  fmt::format("{}, at most {}", expected_text(scenario_key(elements.pattern)), kMaxElements));
+    }
+    if (const auto start = map.get("start")) beam.start = reader.vec(*start);
+
+    if (const auto direction = map.get("direction")) {
+      const Vec3 value = reader.vec(*direction);
+      const double norm = value.stableNorm();
+      if (!(norm > 0.0)) reader.fail(*direction);
+      beam.direction = value / norm;
+    }
+    if (const auto director1 = map.get("director1")) {
+      Vec3 value = reader.vec(*director1);
+      const double norm = value.stableNorm();
+      if (!(norm > 0.0) || sin_angle(beam.direction, value / norm) < kDirectorParallelTolerance) {
+        reader.fail(*director1);
+      }
+      value /= norm;
+      value -= value.dot(beam.direction) * beam.direction;
+      beam.director1 = value.normalized();
+    } else {
+      beam.director1 = default_director(beam.direction);
+    }
+    if (const auto factor = map.get("bending_factor")) {
+      beam.bending_factor = reader.number(*factor, [](double v) { return v > 0.0; });
+    }
+    beams.push_back(beam);
+  }
+  return beams;
+}
+
+/// The nine dofs selected by a list of dof items.
+DofMask read_dofs(const Reader& reader, const Field& field) {
+  DofMask mask{};
+  const std::vector<Field> items = reader.list(field, true);
+  const std::string expected =
+      "one of all | position | directors | x | y | z | g1x | g1y | g1z | g2x | g2y | g2z";
+  for (const Field& item : items) {
+    const std::string text = is_plain_scalar(item.node) ? item.node.Scalar() : std::string();
+    if (text == "all") {
+      mask.fill(true);
+    } else if (text == "position") {
+      mask[kX] = mask[kY] = mask[kZ] = true;
+    } else if (text == "directors") {
+      for (int dof = kG1x; dof <= kG2z; ++dof) mask[dof] = true;
+    } else {
+      const auto* found = std::find(std::begin(kDofNames), std::end(kDofNames), text);
+      if (found == std::end(kDofNames)) reader.fail(item, expected);
+      mask[found - std::begin(kDofNames)] = true;
+    }
+  }
+  return mask;
+}
+
+/// Checks that every nonzero moment of each load keeps the axis of the first nonzero one.
+class MomentAxes {
+ public:
+  void check(const Reader& reader, int condition, const Vec3& moment, const Field& field) {
+    if (moment.squaredNorm() == 0.0) return;
+    const auto found = first_.find(condition);
+    if (found == first_.end()) {
+      first_.emplace(condition, std::pair{moment, fmt::format("{} (line {})", field.path, field.line)});
+      return;
+    }
+    if (sin_angle(found->second.first, moment) >= kMomentAxisTolerance) {
+      reader.fail(field, fmt::format("a moment parallel to {} given at {} (moment axis must stay fixed)",
+                                     format_vec(found->second.first), found->second.second));
+    }
+  }
+
+ private:
+  std::map<int, std::pair<Vec3, std::string>> first_;
+};
+
+std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& top,
+                                           const NameTable& beam_names, const std::vector<BeamSpec>& beams,
+                                           NameTable& names, MomentAxes& moment_axes) {
+  std::vector<ConditionSpec> conditions;
+  const auto list = top.get("conditions");
+  if (!list) return conditions;
+  for (const Field& item : reader.list(*list, false)) {
+    const MapView map(reader, item);
+    ConditionSpec condition;
+    condition.line = map.line();
+    const Field name = map.require("name");
+    condition.name = reader.name(name);
+    names.add(reader, name, condition.name, "conditions");
+
+    const std::string type = reader.choice(map.require("type"));
+    condition.type = type == "clamp"    ? ConditionType::clamp
+                     : type == "motion" ? ConditionType::motion
+                                        : ConditionType::load;
+
+    const Field beam = map.require("beam");
+    const auto beam_index = beam_names.find(reader.name(beam));
+    if (!beam_index) reader.fail(beam, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
+    condition.beam = *beam_index;
+
+    const Field at = map.require("at");
+    const int last_node = 2 * beams[condition.beam].elements;
+    const std::string at_text = is_plain_scalar(at.node) ? at.node.Scalar() : std::string();
+    if (at_text == "start") {
+      condition.node = 0;
+    } else if (at_text == "end") {
+      condition.node = last_node;
+    } else {
+      const auto node = parse_integer(at.node);
+      if (!node || *node < 0 || *node > last_node) {
+        reader.fail(at, fmt::format("one of start | end | an integer in [0, {}] (beam {}: elements {})",
+                                    last_node, beams[condition.beam].name, beams[condition.beam].elements));
+      }
+      condition.node = static_cast<int>(*node);
+    }
+
+    const auto dofs = map.get("dofs");
+    if (condition.type == ConditionType::load) {
+      if (dofs) reader.fail(*dofs, "no dofs on a load condition (dofs are for clamp and motion conditions)");
+    } else {
+      condition.dofs =
+          dofs ? read_dofs(reader, *dofs) : DofMask{true, true, true, true, true, true, true, true, true};
+    }
+
+    if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+
+    for (const char* key : {"force", "moment"}) {
+      const auto value = map.get(key);
+      if (!value) continue;
+      if (condition.type != ConditionType::load) {
+        reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
+                                        type_name(condition.type), key));
+      }
+      if (std::string_view(key) == "force") {
+        condition.force = reader.vec(*value);
+      } else {
+        condition.moment = reader.vec(*value);
+        moment_axes.check(reader, static_cast<int>(conditions.size()), condition.moment, *value);
+      }
+    }
+    conditions.push_back(condition);
+  }
+  return conditions;
+}
+
+std::vector<int> read_condition_names(const Reader& reader, const std::optional<Field>& field,
+                                      const NameTable& condition_names, std::string_view list_name) {
+  std::vector<int> out;
+  if (!field) return out;
+  for (const Field& item : reader.list(*field, false)) {
+    const auto index = condition_names.find(item.node.IsScalar() ? item.node.Scalar() : std::string());
+    if (!index)
+      reader.fail(item, fmt::format("the name of a condition ({})", name_list(condition_names.names)));
+    if (std::find(out.begin(), out.end(), *index) != out.end()) {
+      reader.fail(item, fmt::format("each condition once in {}", list_name));
+    }
+    out.push_back(*index);
+  }
+  return out;
+}
+
+/// The names of the conditions of one type, for messages.
+std::vector<std::string> names_of_type(const std::vector<ConditionSpec>& conditions, ConditionType type) {
+  std::vector<std::string> out;
+  for (const ConditionSpec& condition : conditions) {
+    if (condition.type == type) out.push_back(condition.name);
+  }
+  return out;
+}
+
+/// The condition a key of stages[].motions or stages[].loads names; it must have the given type.
+int target_condition(const Reader& reader, const MapView::Entry& entry, const std::string& path,
+                     const NameTable& condition_names, const std::vector<ConditionSpec>& conditions,
+                     ConditionType type) {
+  const std::string expected = fmt::format("the name of a {} condition ({})", type_name(type),
+                                           name_list(names_of_type(conditions, type)));
+  const auto index = condition_names.find(entry.key);
+  if (!index) reader.fail(entry.line, path, expected, entry.key);
+  if (conditions[*index].type != type) {
+    reader.fail(entry.line, path, expected,
+                fmt::format("{} (a {} condition)", entry.key, type_name(conditions[*index].type)));
+  }
+  return *index;
+}
+
+MotionTarget read_motion_target(const Reader& reader, const Field& field, int condition) {
+  const MapView map(reader, field);
+  MotionTarget target;
+  target.condition = condition;
+  const auto translation = map.get("translation");
+  const auto rotation = map.get("rotation");
+  const auto keyframes = map.get("keyframes");
+  if (!keyframes) {
+    Keyframe frame;
+    if (translation) frame.translation = reader.vec(*translation);
+    if (rotation) frame.rotation = reader.vec(*rotation);
+    target.keyframes.push_back(frame);
+    return target;
+  }
+  for (const auto& other : {translation, rotation}) {
+    if (other) {
+      reader.fail(*other, fmt::format("no {} next to keyframes (give either the short or the long form)",
+                                      leaf_name(other->path)));
+    }
+  }
+  const std::vector<Field> items = reader.list(*keyframes, true);
+  double previous = 0.0;
+  for (std::size_t i = 0; i < items.size(); ++i) {
+    const MapView frame_map(reader, items[i]);
+    Keyframe frame;
+    const Field at = frame_map.require("at");
+    frame.at = reader.number(at);
+    if (!(frame.at > previous && frame.at <= 1.0)) {
+      if (i == 0) reader.fail(at);
+      reader.fail(at, fmt::format("a number in ({}, 1]: greater than the at of the previous keyframe",
+                                  format_number(previous)));
+    }
+    if (i + 1 == items.size() && frame.at != 1.0) reader.fail(at, "1 for the last keyframe");
+    previous = frame.at;
+    if (const auto value = frame_map.get("translation")) frame.translation = reader.vec(*value);
+    if (const auto value = frame_map.get("rotation")) frame.rotation = reader.vec(*value);
+    target.keyframes.push_back(frame);
+  }
+  return target;
+}
+
+std::vector<StageSpec> read_stages(const Reader& reader, const MapView& top, const NameTable& condition_names,
+                                   const std::vector<ConditionSpec>& conditions, MomentAxes& moment_axes) {
+  // The value each load has at the start of the current stage.
+  std::map<int, std::pair<Vec3, Vec3>> load_values;
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    if (conditions[i].type == ConditionType::load) {
+      load_values[static_cast<int>(i)] = {conditions[i].force, conditions[i].moment};
+    }
+  }
+
+  std::vector<StageSpec> stages;
+  NameTable stage_names;
+  for (const Field& item : reader.list(top.require("stages"), true)) {
+    const MapView map(reader, item);
+    StageSpec stage;
+    const Field name = map.require("name");
+    stage.name = reader.name(name);
+    stage_names.add(reader, name, stage.name, "stages");
+    stage.steps = reader.integer(map.require("steps"), [](int v) { return v >= 1; });
+    if (const auto duration = map.get("duration")) {
+      stage.duration = reader.number(*duration, [](double v) { return v > 0.0; });
+    }
+
+    stage.activate = read_condition_names(reader, map.get("activate"), condition_names, "activate");
+    const auto release = map.get("release");
+    stage.release = read_condition_names(reader, release, condition_names, "release");
+    for (std::size_t i = 0; i < stage.release.size(); ++i) {
+      if (std::find(stage.activate.begin(), stage.activate.end(), stage.release[i]) != stage.activate.end()) {
+        const std::vector<Field> items = reader.list(*release, false);
+        reader.fail(items[i], "a condition that is not also in activate of the same stage");
+      }
+    }
+
+    if (const auto motions = map.get("motions")) {
+      const MapView targets(reader, *motions, true);
+      for (const MapView::Entry& entry : targets.entries()) {
+        const Field field = targets.field_of(entry);
+        const int condition =
+            target_condition(reader, entry, field.path, condition_names, conditions, ConditionType::motion);
+        stage.motions.push_back(read_motion_target(reader, field, condition));
+      }
+    }
+
+    if (const auto loads = map.get("loads")) {
+      const MapView targets(reader, *loads, true);
+      for (const MapView::Entry& entry : targets.entries()) {
+        const Field field = targets.field_of(entry);
+        const int condition =
+            target_condition(reader, entry, field.path, condition_names, conditions, ConditionType::load);
+        const MapView values(reader, field);
+        auto& [force, moment] = load_values[condition];
+        if (const auto value = values.get("force")) force = reader.vec(*value);
+        if (const auto value = values.get("moment")) {
+          moment = reader.vec(*value);
+          moment_axes.check(reader, condition, moment, *value);
+        }
+        stage.loads.push_back({condition, force, moment});
+      }
+    }
+    stages.push_back(std::move(stage));
+  }
+  return stages;
+}
+
+SolverSettings read_solver(const Reader& reader, const MapView& top) {
+  SolverSettings solver;
+  const auto field = top.get("solver");
+  if (!field) return solver;
+  const MapView map(reader, *field);
+  if (const auto value = map.get("linear_solver")) {
+    solver.linear_solver =
+        reader.choice(*value) == "umfpack" ? LinearSolverKind::umfpack : LinearSolverKind::cholmod;
+  }
+  const auto at_least = [](int minimum) { return [minimum](int v) { return v >= minimum; }; };
+  const auto positive = [](double v) { return v > 0.0; };
+  if (const auto value = map.get("max_newton_iterations")) {
+    solver.max_newton_iterations = reader.integer(*value, at_least(1));
+  }
+  if (const auto value = map.get("residual_tolerance"))
+    solver.residual_tolerance = reader.number(*value, positive);
+  if (const auto value = map.get("increment_tolerance")) {
+    solver.increment_tolerance = reader.number(*value, positive);
+  }
+  if (const auto value = map.get("max_cutbacks")) solver.max_cutbacks = reader.integer(*value, at_least(0));
+  if (const auto value = map.get("easy_iterations"))
+    solver.easy_iterations = reader.integer(*value, at_least(1));
+  if (const auto value = map.get("line_search")) solver.line_search = reader.boolean(*value);
+  if (const auto value = map.get("gauss_points")) {
+    solver.gauss_points = reader.integer(*value, [](int v) { return v >= 1 && v <= 5; });
+  }
+  return solver;
+}
+
+OutputSettings read_output(const Reader& reader, const MapView& top) {
+  OutputSettings output;
+  const auto field = top.get("output");
+  if (!field) return output;
+  const MapView map(reader, *field);
+  if (const auto value = map.get("vtk_every"))
+    output.vtk_every = reader.integer(*value, [](int v) { return v >= 0; });
+  if (const auto value = map.get("tube_sides")) {
+    output.tube_sides = reader.integer(*value, [](int v) { return v >= 3; });
+  }
+  if (const auto value = map.get("progress_seconds")) {
+    output.progress_seconds = reader.number(*value, [](double v) { return v >= 0.0; });
+  }
+  return output;
+}
+
+Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::string& path) {
+  if (!root.IsMap()) {
+    std::string keys;
+    for (const KeyDoc& key : scenario_keys()) {
+      if (parent_pattern(key.path).empty()) keys += (keys.empty() ? "" : " | ") + std::string(key.path);
+    }
+    reader.fail(line_of(root, 1), "top level", "a map with the keys " + keys,
+                root.IsNull() ? std::string("nothing (empty document)") : render(root));
+  }
+  const MapView top(reader, Field{root, "", "", line_of(root, 1)});
+  Scenario scenario;
+  scenario.path = path;
+  read_units(reader, top);
+  NameTable material_names;
+  NameTable beam_names;
+  NameTable condition_names;
+  scenario.materials = read_materials(reader, top, material_names);
+  scenario.beams = read_beams(reader, top, material_names, beam_names);
+  MomentAxes moment_axes;
+  scenario.conditions =
+      read_conditions(reader, top, beam_names, scenario.beams, condition_names, moment_axes);
+
+  scenario.stages = read_stages(reader, top, condition_names, scenario.conditions, moment_axes);
+  scenario.solver = read_solver(reader, top);
+  scenario.output = read_output(reader, top);
+  return scenario;
+}
+
+// ---- describe ----
+
+/// A name as a YAML scalar: plain when safe, double-quoted otherwise.
+std::string yaml_name(const std::string& name) {
+  static constexpr std::string_view kReserved[] = {"true", "false", "null", "yes", "no",
+                                                   "on",   "off",   "y",    "n",   "~"};
+  std::string lower = name;
+  std::transform(lower.begin(), lower.end(), lower.begin(), [](unsigned char c) { return std::tolower(c); });
+  const bool simple =
+      !name.empty() && (std::isalpha(static_cast<unsigned char>(name.front())) || name.front() == '_') &&
+      std::all_of(name.begin(), name.end(),
+                  [](unsigned char c) { return std::isalnum(c) || c == '_' || c == '-' || c == '.'; }) &&
+      std::find(std::begin(kReserved), std::end(kReserved), lower) == std::end(kReserved);
+  if (simple) return name;
+  std::string out = "\"";
+  for (char c : name) {
+    if (c == '"' || c == '\\') out += '\\';
+    if (c == '\n') {
+      out += "\\n";
+      continue;
+    }
+    out += c;
+  }
+  return out + "\"";
+}
+
+std::string describe_dofs(const DofMask& mask) {
+  if (std::all_of(mask.begin(), mask.end(), [](bool b) { return b; })) return "[all]";
+  std::vector<std::string> items;
+  if (mask[kX] && mask[kY] && mask[kZ]) {
+    items.emplace_back("position");
+  } else {
+    for (int dof = kX; dof <= kZ; ++dof) {
+      if (mask[dof]) items.emplace_back(kDofNames[dof]);
+    }
+  }
+  if (std::all_of(mask.begin() + kG1x, mask.end(), [](bool b) { return b; })) {
+    items.emplace_back("directors");
+  } else {
+    for (int dof = kG1x; dof <= kG2z; ++dof) {
+      if (mask[dof]) items.emplace_back(kDofNames[dof]);
+    }
+  }
+  std::string out = "[";
+  for (std::size_t i = 0; i < items.size(); ++i) out += (i > 0 ? ", " : "") + items[i];
+  return out + "]";
+}
+
+std::string describe_names(const Scenario& scenario, const std::vector<int>& conditions) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < conditions.size(); ++i) {
+    out += (i > 0 ? ", " : "") + yaml_name(scenario.conditions[conditions[i]].name);
+  }
+  return out + "]";
+}
+
+}  // namespace
+
+Scenario parse_scenario(const std::string& yaml_text, const std::string& path) {
+  const Reader reader(path);
+  YAML::Node root;
+  try {
+    root = YAML::Load(yaml_text);
+  } catch (const YAML::Exception& error) {
+    reader.fail(error.mark.line >= 0 ? error.mark.line + 1 : 0, "yaml", "valid YAML", one_line(error.msg));
+  }
+  try {
+    return parse_root(reader, root, path);
+  } catch (const YAML::Exception& error) {  // not expected: the reader checks node types before use
+    reader.fail(error.mark.line >= 0 ? error.mark.line + 1 : 0, "yaml", "a readable scenario",
+                one_line(error.msg));
+  }
+}
+
+Scenario read_scenario(const std::string& path) {
+  const Reader reader(path);
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error))
+    reader.fail(0, "file", "a readable file", "cannot open: a directory");
+  std::ifstream file(path, std::ios::binary);
+  if (!file) reader.fail(0, "file", "a readable file", std::string("cannot open: ") + std::strerror(errno));
+  std::ostringstream text;
+  text << file.rdbuf();
+  if (file.bad()) reader.fail(0, "file", "a readable file", "cannot read it");
+  return parse_scenario(text.str(), path);
+}
+
+std::string describe(const Scenario& scenario) {
+  std::string out;
+  const auto line = [&out](std::string_view text) {
+    out += text;
+    out += '\n';
+  };
+  line(fmt::format("# scenario: {}", scenario.path));
+  line("units: {length: mm, force: N, stress: MPa, time: s}");
+
+  line("materials:");
+  for (const Material& material : scenario.materials) {
+    line(fmt::format("  - name: {}", yaml_name(material.name)));
+    line(fmt::format("    young_modulus: {}  # MPa", format_number(material.young_modulus)));
+    line(fmt::format("    poisson_ratio: {}", format_number(material.poisson_ratio)));
+  }
+
+  line("beams:");
+  for (const BeamSpec& beam : scenario.beams) {
+    line(fmt::format("  - name: {}", yaml_name(beam.name)));
+    line(fmt::format("    material: {}", yaml_name(scenario.materials.at(beam.material).name)));
+    line(fmt::format("    radius: {}  # mm", format_number(beam.radius)));
+    line(fmt::format("    length: {}  # mm", format_number(beam.length)));
+    line(fmt::format("    elements: {}  # nodes 0..{}", beam.elements, 2 * beam.elements));
+    line(fmt::format("    start: {}  # mm", format_vec(beam.start)));
+    line(fmt::format("    direction: {}", format_vec(beam.direction)));
+    line(fmt::format("    director1: {}", format_vec(beam.director1)));
+    line(fmt::format("    bending_factor: {}", format_number(beam.bending_factor)));
+  }
+
+  if (scenario.conditions.empty()) {
+    line("conditions: []");
+  } else {
+    line("conditions:");
+  }
+  for (const ConditionSpec& condition : scenario.conditions) {
+    const BeamSpec& beam = scenario.beams.at(condition.beam);
+    line(fmt::format("  - name: {}  # line {}", yaml_name(condition.name), condition.line));
+    line(fmt::format("    type: {}", type_name(condition.type)));
+    line(fmt::format("    beam: {}", yaml_name(beam.name)));
+    const std::string at = condition.node == 0                   ? std::string("start")
+                           : condition.node == 2 * beam.elements ? std::string("end")
+                                                                 : std::to_string(condition.node);
+    line(fmt::format("    at: {}  # node {}", at, condition.node));
+    if (condition.type == ConditionType::load) {
+      line(fmt::format("    force: {}  # N", format_vec(condition.force)));
+      line(fmt::format("    moment: {}  # N mm", format_vec(condition.moment)));
+    } else {
+      line(fmt::format("    dofs: {}", describe_dofs(condition.dofs)));
+    }
+    line(fmt::format("    active: {}", condition.initially_active ? "true" : "false"));
+  }
+
+  line("stages:");
+  for (const StageSpec& stage : scenario.stages) {
+    line(fmt::format("  - name: {}", yaml_name(stage.name)));
+    line(fmt::format("    steps: {}", stage.steps));
+    line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
+    line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
+    line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
+    line(stage.motions.empty() ? "    motions: {}" : "    motions:");
+    for (const MotionTarget& motion : stage.motions) {
+      line(fmt::format("      {}:", yaml_name(scenario.conditions.at(motion.condition).name)));
+      line("        keyframes:  # translation [mm], rotation vector [deg], cumulative since activation");
+      for (const Keyframe& frame : motion.keyframes) {
+        line(fmt::format("          - {{at: {}, translation: {}, rotation: {}}}", format_number(frame.at),
+                         format_vec(frame.translation), format_vec(frame.rotation)));
+      }
+    }
+    line(stage.loads.empty() ? "    loads: {}" : "    loads:  # at stage end: force [N], moment [N mm]");
+    for (const LoadTarget& load : stage.loads) {
+      line(fmt::format("      {}: {{force: {}, moment: {}}}",
+                       yaml_name(scenario.conditions.at(load.condition).name), format_vec(load.force),
+                       format_vec(load.moment)));
+    }
+  }
+
+  const SolverSettings& solver = scenario.solver;
+  line("solver:");
+  line(fmt::format("  linear_solver: {}",
+                   solver.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "umfpack"));
+  line(fmt::format("  max_newton_iterations: {}", solver.max_newton_iterations));
+  line(fmt::format("  residual_tolerance: {}", format_number(solver.residual_tolerance)));
+  line(fmt::format("  increment_tolerance: {}", format_number(solver.increment_tolerance)));
+  line(fmt::format("  max_cutbacks: {}", solver.max_cutbacks));
+  line(fmt::format("  easy_iterations: {}", solver.easy_iterations));
+  line(fmt::format("  line_search: {}", solver.line_search ? "true" : "false"));
+  line(fmt::format("  gauss_points: {}", solver.gauss_points));
+
+  const OutputSettings& output = scenario.output;
+  line("output:");
+  line(fmt::format("  vtk_every: {}", output.vtk_every));
+  line(fmt::format("  tube_sides: {}", output.tube_sides));
+  line(fmt::format("  progress_seconds: {}  # s", format_number(output.progress_seconds)));
+  return out;
+}
+
+}  // namespace nodus::scenario

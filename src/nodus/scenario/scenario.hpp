@@ -1,0 +1,138 @@
+#pragma once
+/// A scenario: what a YAML file describes, resolved and validated. Units throughout: mm, N, MPa, s.
+/// Every field maps one to one onto a key of the file; docs/scenario.md documents each key.
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+
+namespace nodus::scenario {
+
+using Vec3 = Eigen::Vector3d;
+
+/// Bad user input: the message is one line "FILE:LINE: KEY: expected ..., got ...".
+class ScenarioError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Isotropic elastic material.
+struct Material {
+  std::string name;
+  double young_modulus = 0.0;  ///< E [MPa], > 0
+  double poisson_ratio = 0.0;  ///< nu [-], in [0, 0.5)
+};
+
+/// A straight beam in its reference configuration.
+struct BeamSpec {
+  std::string name;
+  int material = 0;                ///< index into Scenario::materials
+  double radius = 0.0;             ///< R [mm], > 0
+  double length = 0.0;             ///< L [mm], > 0
+  int elements = 0;                ///< number of 3-node quadratic elements, >= 1
+  Vec3 start = Vec3::Zero();       ///< centre of the first end section [mm]
+  Vec3 direction = Vec3::UnitX();  ///< unit axis direction (normalised by the reader)
+  Vec3 director1 =
+      Vec3::UnitY();  ///< unit first section director, orthogonal to direction (made so by the reader)
+  double bending_factor = 1.0;  ///< multiplies the second moment of area in bending (Table 1: 0.3), > 0
+};
+
+/// Index of the nine nodal unknowns: centre r, then directors g1 and g2.
+enum Dof : int { kX = 0, kY, kZ, kG1x, kG1y, kG1z, kG2x, kG2y, kG2z };
+using DofMask = std::array<bool, 9>;
+
+enum class ConditionType {
+  clamp,   ///< the selected dofs keep the values they have when the condition is activated
+  motion,  ///< the selected dofs follow a prescribed translation and rotation of the section (stage targets)
+  load,    ///< dead force on the centre and moment about a fixed axis, applied to the section
+};
+
+/// A named boundary condition on one cross-section (node) of one beam.
+struct ConditionSpec {
+  std::string name;
+  ConditionType type = ConditionType::clamp;
+  int beam = 0;                  ///< index into Scenario::beams
+  int node = 0;                  ///< local node index on the beam, resolved from "at" (start = 0, end = 2n)
+  DofMask dofs{};                ///< clamp and motion: the constrained dofs (default: all nine)
+  bool initially_active = true;  ///< active from the first stage on, unless false
+  Vec3 force = Vec3::Zero();     ///< load: initial force [N]
+  Vec3 moment = Vec3::Zero();    ///< load: initial moment [N mm]
+  int line = 0;                  ///< line of the condition in the file (for messages)
+};
+
+/// A keyframe of a prescribed motion inside a stage, cumulative since the condition was activated.
+struct Keyframe {
+  double at = 1.0;                  ///< fraction of the stage, in (0, 1], increasing
+  Vec3 translation = Vec3::Zero();  ///< of the section centre [mm]
+  Vec3 rotation = Vec3::Zero();     ///< rotation vector of the section [degrees]
+};
+
+struct MotionTarget {
+  int condition = 0;                ///< index into Scenario::conditions (type motion)
+  std::vector<Keyframe> keyframes;  ///< at least one; the last one has at = 1
+};
+
+struct LoadTarget {
+  int condition = 0;           ///< index into Scenario::conditions (type load)
+  Vec3 force = Vec3::Zero();   ///< value reached at the end of the stage [N]
+  Vec3 moment = Vec3::Zero();  ///< value reached at the end of the stage [N mm]
+};
+
+/// One stage of the loading program.
+struct StageSpec {
+  std::string name;
+  int steps = 1;              ///< number of nominal load steps, >= 1
+  double duration = 1.0;      ///< length of the stage in load time [s], > 0
+  std::vector<int> activate;  ///< conditions switched on at the start of the stage
+  std::vector<int> release;   ///< conditions switched off at the start of the stage
+  std::vector<MotionTarget> motions;
+  std::vector<LoadTarget> loads;
+};
+
+enum class LinearSolverKind { cholmod, umfpack };
+
+struct SolverSettings {
+  LinearSolverKind linear_solver = LinearSolverKind::cholmod;
+  int max_newton_iterations = 25;     ///< per step attempt, >= 1
+  double residual_tolerance = 1e-8;   ///< |R| <= tol * force scale [-], > 0
+  double increment_tolerance = 1e-8;  ///< |du|_inf <= tol * length scale [-], > 0
+  int max_cutbacks = 12;              ///< successive halvings of a step before giving up, >= 0
+  int easy_iterations = 4;            ///< a step converged in at most this many iterations lets the next grow
+  bool line_search = false;           ///< slower on every verification case so far (docs/model.md)
+  int gauss_points = 2;               ///< Gauss points per element along the axis, 1..5
+};
+
+struct OutputSettings {
+  int vtk_every = 1;              ///< write a VTK file every N converged steps (0: only the final state)
+  int tube_sides = 12;            ///< facets around each tube in the VTK output, >= 3
+  double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
+};
+
+struct Scenario {
+  std::string path;  ///< the file it was read from
+  std::vector<Material> materials;
+  std::vector<BeamSpec> beams;
+  std::vector<ConditionSpec> conditions;
+  std::vector<StageSpec> stages;
+  SolverSettings solver;
+  OutputSettings output;
+};
+
+/// Reads and validates a scenario file. Throws ScenarioError with a one-line message on bad input.
+Scenario read_scenario(const std::string& path);
+
+/// Same, from YAML text; `path` is used in messages only.
+Scenario parse_scenario(const std::string& yaml_text, const std::string& path);
+
+/// The resolved settings, as YAML-like text, for echoing at start.
+std::string describe(const Scenario& scenario);
+
+/// The table of all keys of the file format (name, type, unit, default, range, help) as a markdown table;
+/// the same table drives the reader's messages (see keys.hpp) and is pasted into docs/scenario.md.
+std::string scenario_keys_markdown();
+
+}  // namespace nodus::scenario

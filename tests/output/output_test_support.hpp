@@ -1,0 +1,187 @@
+#pragma once
+// Shared helpers of the output tests: a scratch folder, a small two-beam model, a deformed state, and a
+// minimal XML reader that checks well-formedness (balanced tags, quoted attributes).
+
+#include <gtest/gtest.h>
+
+#include <cctype>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <sstream>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <unistd.h>
+
+#include <Eigen/Core>
+
+#include "nodus/beam/beam.hpp"
+#include "nodus/model/model.hpp"
+
+namespace nodus::output::testing {
+
+/// A fresh, empty folder under the system temporary folder, named after the running test; removed afterwards.
+class ScratchDir {
+ public:
+  ScratchDir() {
+    const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    path_ = std::filesystem::temp_directory_path() / ("nodus_output_" + std::string(info->test_suite_name()) +
+                                                      "_" + info->name() + "_" + std::to_string(::getpid()));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~ScratchDir() {
+    std::error_code ignored;
+    std::filesystem::remove_all(path_, ignored);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+/// Beam "a" along x (2 elements, R = 0.5 mm) and beam "b" along z from (1, 2, 3) (1 element, R = 0.25 mm).
+inline model::Model two_beam_model() {
+  model::Model m;
+  m.add_beam(beam::BeamDefinition{"a", 10.0, 0.5, 2, beam::Vec3::Zero(), beam::Vec3::UnitX(),
+                                  beam::Vec3::UnitY(), beam::ElasticConstants{1000.0, 0.3}, 1.0});
+  m.add_beam(beam::BeamDefinition{"b", 4.0, 0.25, 1, beam::Vec3(1, 2, 3), beam::Vec3::UnitZ(),
+                                  beam::Vec3::UnitX(), beam::ElasticConstants{1000.0, 0.3}, 1.0});
+  return m;
+}
+
+/// The reference state with a smooth, non-rigid perturbation of every unknown (sections stretched and
+/// sheared).
+inline Eigen::VectorXd deformed_state(const model::Model& m) {
+  Eigen::VectorXd x = m.reference();
+  for (Eigen::Index i = 0; i < x.size(); ++i) x[i] += 0.05 * std::sin(0.7 * static_cast<double>(i) + 0.3);
+  return x;
+}
+
+inline std::string read_text(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw std::runtime_error("cannot read " + path.string());
+  std::ostringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+inline std::vector<std::string> split(const std::string& text, char separator) {
+  std::vector<std::string> parts;
+  std::string part;
+  std::istringstream in(text);
+  while (std::getline(in, part, separator)) parts.push_back(part);
+  if (!text.empty() && text.back() == separator && separator != '\n') parts.emplace_back();
+  return parts;
+}
+
+inline std::vector<double> numbers(const std::string& text) {
+  std::vector<double> values;
+  std::istringstream in(text);
+  double v;
+  while (in >> v) values.push_back(v);
+  if (!in.eof()) throw std::runtime_error("not a number list: " + text.substr(0, 80));
+  return values;
+}
+
+/// An element of a parsed XML document.
+struct XmlElement {
+  std::string name;
+  std::map<std::string, std::string> attributes;
+  std::string text;  ///< character data directly inside the element
+  std::vector<std::unique_ptr<XmlElement>> children;
+
+  const std::string& attribute(const std::string& key) const {
+    const auto it = attributes.find(key);
+    if (it == attributes.end()) throw std::runtime_error("<" + name + "> has no attribute " + key);
+    return it->second;
+  }
+  std::vector<const XmlElement*> all(const std::string& child) const {
+    std::vector<const XmlElement*> found;
+    for (const auto& c : children)
+      if (c->name == child) found.push_back(c.get());
+    return found;
+  }
+  const XmlElement& one(const std::string& child) const {
+    const auto found = all(child);
+    if (found.size() != 1)
+      throw std::runtime_error("<" + name + "> has " + std::to_string(found.size()) + " <" + child + ">");
+    return *found.front();
+  }
+  /// The child DataArray with Name = `array_name`.
+  const XmlElement& data_array(const std::string& array_name) const {
+    for (const XmlElement* a : all("DataArray"))
+      if (a->attributes.count("Name") && a->attributes.at("Name") == array_name) return *a;
+    throw std::runtime_error("<" + name + "> has no DataArray " + array_name);
+  }
+};
+
+/// Parses a document without DTD, comments or CDATA (what our writers produce); throws std::runtime_error on
+/// unbalanced or malformed tags.
+inline std::unique_ptr<XmlElement> parse_xml(const std::string& doc) {
+  std::size_t pos = 0;
+  auto fail = [&](const std::string& why) {
+    throw std::runtime_error("XML at " + std::to_string(pos) + ": " + why);
+  };
+  std::unique_ptr<XmlElement> root;
+  std::vector<XmlElement*> open;
+  while (pos < doc.size()) {
+    const std::size_t lt = doc.find('<', pos);
+    const std::string text = doc.substr(pos, lt == std::string::npos ? std::string::npos : lt - pos);
+    if (open.empty()) {
+      for (char c : text)
+        if (!std::isspace(static_cast<unsigned char>(c))) fail("text outside the root element");
+    } else {
+      open.back()->text += text;
+    }
+    if (lt == std::string::npos) break;
+    const std::size_t gt = doc.find('>', lt);
+    if (gt == std::string::npos) fail("unterminated tag");
+    std::string tag = doc.substr(lt + 1, gt - lt - 1);
+    pos = gt + 1;
+    if (!tag.empty() && tag.front() == '?') {
+      if (tag.back() != '?' || root) fail("bad processing instruction");
+      continue;
+    }
+    if (!tag.empty() && tag.front() == '/') {
+      if (open.empty() || open.back()->name != tag.substr(1)) fail("unbalanced </" + tag.substr(1) + ">");
+      open.pop_back();
+      continue;
+    }
+    const bool self_closing = !tag.empty() && tag.back() == '/';
+    if (self_closing) tag.pop_back();
+    auto element = std::make_unique<XmlElement>();
+    std::size_t i = 0;
+    while (i < tag.size() && !std::isspace(static_cast<unsigned char>(tag[i]))) element->name += tag[i++];
+    if (element->name.empty()) fail("empty tag name");
+    while (true) {
+      while (i < tag.size() && std::isspace(static_cast<unsigned char>(tag[i]))) ++i;
+      if (i >= tag.size()) break;
+      const std::size_t eq = tag.find('=', i);
+      if (eq == std::string::npos || eq + 1 >= tag.size() || tag[eq + 1] != '"')
+        fail("bad attribute in <" + tag + ">");
+      const std::size_t close = tag.find('"', eq + 2);
+      if (close == std::string::npos) fail("unterminated attribute value");
+      const std::string key = tag.substr(i, eq - i);
+      if (!element->attributes.emplace(key, tag.substr(eq + 2, close - eq - 2)).second)
+        fail("duplicate " + key);
+      i = close + 1;
+    }
+    XmlElement* raw = element.get();
+    if (open.empty()) {
+      if (root) fail("second root element");
+      root = std::move(element);
+    } else {
+      open.back()->children.push_back(std::move(element));
+    }
+    if (!self_closing) open.push_back(raw);
+  }
+  if (!open.empty()) fail("unclosed <" + open.back()->name + ">");
+  if (!root) fail("no root element");
+  return root;
+}
+
+}  // namespace nodus::output::testing

@@ -1,0 +1,137 @@
+// steps.csv lines, summary.json, progress lines and the stderr logger.
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <regex>
+
+#include <spdlog/spdlog.h>
+
+#include "nodus/output/logging.hpp"
+#include "nodus/output/progress_line.hpp"
+#include "nodus/output/steps_csv_writer.hpp"
+#include "nodus/output/summary_writer.hpp"
+#include "output_test_support.hpp"
+
+#if __has_include(<nlohmann/json.hpp>)
+#include <nlohmann/json.hpp>
+#define NODUS_TEST_HAVE_JSON 1
+#endif
+
+namespace nodus::output {
+namespace {
+
+TEST(StepsCsv, HeaderNamesSixColumnsPerCondition) {
+  EXPECT_EQ(steps_csv_header({}), "step,stage,time,newton_iterations,cutbacks,residual,increment");
+  EXPECT_EQ(steps_csv_header({"left", "right"}),
+            "step,stage,time,newton_iterations,cutbacks,residual,increment,"
+            "left_fx,left_fy,left_fz,left_mx,left_my,left_mz,right_fx,right_fy,right_fz,right_mx,right_my,"
+            "right_mz");
+}
+
+TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
+  simulation::StepRecord r;
+  r.step = 7;
+  r.stage = 1;
+  r.time = 1.0 / 3.0;
+  r.newton_iterations = 4;
+  r.cutbacks = 1;
+  r.residual = 2.5e-9;
+  r.increment = 1e-12;
+  loading::SectionForce s;
+  s.force = Eigen::Vector3d(1, -2, 0.125);
+  s.moment = Eigen::Vector3d(0, 1234.5, -1e-20);
+  r.sections = {s};
+  EXPECT_EQ(steps_csv_row(r, "bend", 1), "7,bend,0.3333333333,4,1,2.5e-09,1e-12,1,-2,0.125,0,1234.5,-1e-20");
+  // A missing section gives empty fields; a stage name with a comma is quoted.
+  const std::string row = steps_csv_row(r, "a,b", 2);
+  EXPECT_EQ(testing::split(row, ',').size(), 7u + 12u + 1u);  // the quoted comma splits once more
+  EXPECT_NE(row.find(",\"a,b\","), std::string::npos);
+  EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,");
+}
+
+TEST(Summary, JsonHoldsEveryField) {
+  SummaryData d;
+  d.dofs = 72;
+  d.nodes = 8;
+  d.elements = 3;
+  d.beams = 2;
+  d.steps = 40;
+  d.newton_iterations = 163;
+  d.converged = false;
+  d.wall_seconds = 1.5;
+  d.failure = "stage \"bend\": no convergence";
+  d.final_time = 0.75;
+  d.scenario = "scenarios/two_beams.yaml";
+  const std::string text = summary_json(d);
+  ASSERT_FALSE(text.empty());
+  EXPECT_EQ(text.back(), '\n');
+#ifdef NODUS_TEST_HAVE_JSON
+  const nlohmann::json j = nlohmann::json::parse(text);
+  EXPECT_EQ(j.at("dofs"), 72);
+  EXPECT_EQ(j.at("nodes"), 8);
+  EXPECT_EQ(j.at("elements"), 3);
+  EXPECT_EQ(j.at("beams"), 2);
+  EXPECT_EQ(j.at("steps"), 40);
+  EXPECT_EQ(j.at("newton_iterations"), 163);
+  EXPECT_EQ(j.at("converged"), false);
+  EXPECT_EQ(j.at("wall_seconds"), 1.5);
+  EXPECT_EQ(j.at("failure"), d.failure);
+  EXPECT_EQ(j.at("final_time"), 0.75);
+  EXPECT_EQ(j.at("scenario"), d.scenario);
+  EXPECT_EQ(j.size(), 11u);
+#else
+  for (const char* key : {"\"dofs\": 72", "\"nodes\": 8", "\"elements\": 3", "\"beams\": 2", "\"steps\": 40",
+                          "\"newton_iterations\": 163", "\"converged\": false", "\"wall_seconds\": 1.5",
+                          "\"final_time\": 0.75", "\"scenario\": \"scenarios/two_beams.yaml\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key;
+#endif
+  testing::ScratchDir dir;
+  write_summary(dir.path() / "summary.json", d);
+  EXPECT_EQ(testing::read_text(dir.path() / "summary.json"), text);
+}
+
+TEST(Progress, RemainingTimeExtrapolatesLoadTimeRate) {
+  EXPECT_DOUBLE_EQ(remaining_seconds(10.0, 0.0, 0.25, 1.0), 30.0);
+  EXPECT_DOUBLE_EQ(remaining_seconds(10.0, 1.0, 1.5, 3.0), 30.0);
+  EXPECT_EQ(remaining_seconds(10.0, 0.0, 1.0, 1.0), 0.0);
+  EXPECT_TRUE(std::isnan(remaining_seconds(10.0, 0.0, 0.0, 1.0)));
+}
+
+TEST(Progress, LineFormat) {
+  ProgressInfo p;
+  p.stage_name = "twist";
+  p.stage = 1;
+  p.num_stages = 3;
+  p.step = 17;
+  p.time = 1.25;
+  p.start_time = 0.0;
+  p.end_time = 3.0;
+  p.newton_iterations = 5;
+  p.residual = 3.2e-9;
+  p.elapsed_seconds = 12.34;
+  EXPECT_EQ(
+      progress_line(p),
+      "stage twist (2/3), step 17, load time 1.25 / 3, Newton its 5, residual 3.200e-09, elapsed 12.3 s, "
+      "remaining ~17 s");
+  p.time = 0.0;
+  EXPECT_NE(progress_line(p).find("remaining ~? s"), std::string::npos);
+  p.time = 2.5;
+  EXPECT_NE(progress_line(p).find("remaining ~2.5 s"), std::string::npos) << progress_line(p);
+}
+
+TEST(Logging, DefaultLoggerWritesToStderr) {
+  use_stderr_logger();
+  use_stderr_logger();  // idempotent
+  ::testing::internal::CaptureStdout();
+  ::testing::internal::CaptureStderr();
+  spdlog::info("hello {}", 42);
+  spdlog::default_logger()->flush();
+  const std::string err = ::testing::internal::GetCapturedStderr();
+  const std::string out = ::testing::internal::GetCapturedStdout();
+  EXPECT_EQ(out, "");
+  EXPECT_TRUE(std::regex_search(err, std::regex(R"(\[\d\d:\d\d:\d\d\] hello 42)"))) << err;
+}
+
+}  // namespace
+}  // namespace nodus::output

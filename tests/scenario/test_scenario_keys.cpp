@@ -1,0 +1,130 @@
+// Tests of the key table: consistent, in sync with the struct defaults and with docs/scenario.md.
+
+#include <cstdlib>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "nodus/scenario/keys.hpp"
+#include "nodus/scenario/scenario.hpp"
+
+namespace nodus::scenario {
+namespace {
+
+std::string read_docs() {
+  std::ifstream in(std::string(NODUS_SOURCE_DIR) + "/docs/scenario.md");
+  EXPECT_TRUE(in.good()) << "cannot open docs/scenario.md";
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+TEST(ScenarioKeys, EveryKeyPathIsDocumented) {
+  const std::string docs = read_docs();
+  for (const KeyDoc& key : scenario_keys()) {
+    EXPECT_NE(docs.find(std::string(key.path)), std::string::npos)
+        << key.path << " missing from docs/scenario.md";
+  }
+}
+
+TEST(ScenarioKeys, DocsHoldTheCurrentTable) {
+  EXPECT_NE(read_docs().find(scenario_keys_markdown()), std::string::npos)
+      << "docs/scenario.md does not hold the current output of scenario_keys_markdown(); paste it:\n"
+      << scenario_keys_markdown();
+}
+
+TEST(ScenarioKeys, DocsExampleIsValid) {
+  // Every ```yaml block of the docs whose first line starts with "# Example" is a complete valid scenario.
+  const std::string docs = read_docs();
+  int examples = 0;
+  for (std::size_t start = docs.find("```yaml\n# Example"); start != std::string::npos;
+       start = docs.find("```yaml\n# Example", start + 1)) {
+    const std::size_t begin = start + 8;
+    const std::size_t end = docs.find("```", begin);
+    ASSERT_NE(end, std::string::npos);
+    EXPECT_NO_THROW(parse_scenario(docs.substr(begin, end - begin), "docs/scenario.md example"));
+    ++examples;
+  }
+  EXPECT_GE(examples, 1);
+}
+
+TEST(ScenarioKeys, TableIsConsistent) {
+  const std::set<std::string_view> types{"number", "integer", "string", "bool",
+                                         "vector", "list",    "map",    "choice"};
+  std::set<std::string_view> paths;
+  for (const KeyDoc& key : scenario_keys()) {
+    EXPECT_TRUE(paths.insert(key.path).second) << "duplicate " << key.path;
+    EXPECT_TRUE(types.count(key.type)) << key.path << ": type " << key.type;
+    EXPECT_FALSE(key.default_value.empty()) << key.path;
+    EXPECT_FALSE(key.help.empty()) << key.path;
+    if (key.type == "choice") {
+      EXPECT_FALSE(key.range.empty()) << key.path;
+    }
+    // The parent of every key is a key listed before it (a list for "[]" items).
+    std::string parent(parent_pattern(key.path));
+    if (parent.empty()) continue;
+    if (parent.ends_with("[]")) parent.resize(parent.size() - 2);
+    EXPECT_TRUE(paths.count(parent)) << key.path << ": parent " << parent << " not listed before it";
+  }
+}
+
+TEST(ScenarioKeys, ExpectedTexts) {
+  EXPECT_EQ(expected_text(scenario_key("beams[].radius")), "a number > 0 (mm)");
+  EXPECT_EQ(expected_text(scenario_key("materials[].poisson_ratio")), "a number in [0, 0.5)");
+  EXPECT_EQ(expected_text(scenario_key("beams[].elements")), "an integer >= 1");
+  EXPECT_EQ(expected_text(scenario_key("solver.linear_solver")), "one of cholmod | umfpack");
+  EXPECT_EQ(expected_text(scenario_key("units.length")), "exactly mm");
+  EXPECT_EQ(expected_text(scenario_key("solver.line_search")), "true or false");
+  EXPECT_EQ(expected_text(scenario_key("beams[].start")), "a list of 3 numbers (mm)");
+  EXPECT_THROW(scenario_key("no.such.key"), std::logic_error);
+}
+
+double number(std::string_view text) {
+  return std::strtod(std::string(text).c_str(), nullptr);
+}
+
+TEST(ScenarioKeys, DefaultsMatchTheStructs) {
+  const SolverSettings solver;
+  EXPECT_EQ(scenario_key("solver.linear_solver").default_value, "cholmod");
+  EXPECT_EQ(solver.linear_solver, LinearSolverKind::cholmod);
+  EXPECT_EQ(number(scenario_key("solver.max_newton_iterations").default_value), solver.max_newton_iterations);
+  EXPECT_EQ(number(scenario_key("solver.residual_tolerance").default_value), solver.residual_tolerance);
+  EXPECT_EQ(number(scenario_key("solver.increment_tolerance").default_value), solver.increment_tolerance);
+  EXPECT_EQ(number(scenario_key("solver.max_cutbacks").default_value), solver.max_cutbacks);
+  EXPECT_EQ(number(scenario_key("solver.easy_iterations").default_value), solver.easy_iterations);
+  EXPECT_EQ(scenario_key("solver.line_search").default_value, solver.line_search ? "true" : "false");
+  EXPECT_EQ(number(scenario_key("solver.gauss_points").default_value), solver.gauss_points);
+
+  const OutputSettings output;
+  EXPECT_EQ(number(scenario_key("output.vtk_every").default_value), output.vtk_every);
+  EXPECT_EQ(number(scenario_key("output.tube_sides").default_value), output.tube_sides);
+  EXPECT_EQ(number(scenario_key("output.progress_seconds").default_value), output.progress_seconds);
+
+  const BeamSpec beam;
+  EXPECT_EQ(number(scenario_key("beams[].bending_factor").default_value), beam.bending_factor);
+  EXPECT_EQ(scenario_key("beams[].start").default_value, "[0, 0, 0]");
+  EXPECT_EQ(scenario_key("beams[].direction").default_value, "[1, 0, 0]");
+  const StageSpec stage;
+  EXPECT_EQ(number(scenario_key("stages[].duration").default_value), stage.duration);
+  EXPECT_EQ(scenario_key("conditions[].active").default_value,
+            ConditionSpec{}.initially_active ? "true" : "false");
+}
+
+TEST(ScenarioKeys, MarkdownHasOneRowPerKey) {
+  const std::string table = scenario_keys_markdown();
+  std::istringstream in(table);
+  int rows = 0;
+  for (std::string line; std::getline(in, line);) {
+    ASSERT_TRUE(line.starts_with("| ") || line.starts_with("|--")) << line;
+    ++rows;
+  }
+  EXPECT_EQ(rows, static_cast<int>(scenario_keys().size()) + 2);
+  EXPECT_NE(table.find("| `beams[].radius` | number | mm | required | > 0 |"), std::string::npos) << table;
+  EXPECT_NE(table.find("clamp \\| motion \\| load"), std::string::npos) << table;  // escaped bars
+}
+
+}  // namespace
+}  // namespace nodus::scenario
