@@ -92,6 +92,7 @@ Simulation::Simulation(scenario::Scenario scenario)
     : scenario_(std::move(scenario)),
       model_(build_model(scenario_)),
       conditions_(build_conditions(scenario_, model_)) {
+  check_activation(scenario_, model_);
   for (int c = 0; c < conditions_.size(); ++c)
     if (scenario_.conditions[static_cast<std::size_t>(c)].initially_active)
       conditions_.activate(c, 0.0, model_.reference());
