@@ -19,8 +19,8 @@
 #include <utility>
 #include <vector>
 
-#include <Eigen/SparseCholesky>
 #include <benchmark/benchmark.h>
+#include <Eigen/SparseCholesky>
 
 #include "nodus/model/model.hpp"
 #include "nodus/solver/linear_solver.hpp"
@@ -110,7 +110,8 @@ const System& system_for(Case c, int elements) {
   Eigen::SimplicialLDLT<SparseMatrix> ldlt(s.a);
   if (ldlt.info() == Eigen::Success) s.neg_pivots = static_cast<int>((ldlt.vectorD().array() < 0).count());
   const double asym = SparseMatrix(s.a - SparseMatrix(s.a.transpose())).norm() / s.a.norm();
-  std::fprintf(stderr, "# matrix %s, %d elements: n = %ld, nnz = %ld, negative pivots = %d, |A-A^T|/|A| = %.1e\n",
+  std::fprintf(stderr,
+               "# matrix %s, %d elements: n = %ld, nnz = %ld, negative pivots = %d, |A-A^T|/|A| = %.1e\n",
                c == Case::pd ? "pd" : "indefinite", elements, static_cast<long>(s.a.rows()),
                static_cast<long>(s.a.nonZeros()), s.neg_pivots, asym);
   return cache.emplace(key, std::move(s)).first->second;
@@ -138,6 +139,7 @@ void BM_FactorizeSolve(benchmark::State& state, Case c, LinearSolverKind kind) {
   const double residual = (s.a * x - s.b).norm() / s.b.norm();
   state.counters["analyze_ms"] = std::chrono::duration<double, std::milli>(t1 - t0).count();
   state.counters["rel_residual"] = residual;
+  state.counters["backward_error"] = (s.a * x - s.b).norm() / (s.a.norm() * x.norm() + s.b.norm());
   state.counters["rel_error"] = (x - s.x_true).norm() / s.x_true.norm();
   state.counters["residual_ok"] = residual < 1e-8 ? 1 : 0;
   state.counters["neg_pivots"] = s.neg_pivots;
@@ -159,7 +161,8 @@ BENCHMARK_CAPTURE(BM_FactorizeSolve, pd_cholmod_ldlt, Case::pd, LinearSolverKind
 BENCHMARK_CAPTURE(BM_FactorizeSolve, pd_umfpack, Case::pd, LinearSolverKind::umfpack)->Apply(sizes);
 BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_cholmod, Case::indefinite, LinearSolverKind::cholmod)
     ->Apply(sizes);
-BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_cholmod_ldlt, Case::indefinite, LinearSolverKind::cholmod_ldlt)
+BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_cholmod_ldlt, Case::indefinite,
+                  LinearSolverKind::cholmod_ldlt)
     ->Apply(sizes);
 BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_umfpack, Case::indefinite, LinearSolverKind::umfpack)
     ->Apply(sizes);

@@ -1,6 +1,11 @@
 // A cantilever under an end moment bends into a circular arc of curvature M / EI: M = 2 pi EI / L closes it
 // into a full circle (the tip returns to the root), M = pi EI / L makes a half circle with the tip at
 // (0, 2 L / pi) from the root.
+//
+// The closed form is the Euler-Bernoulli rod's. The 9-dof model adds terms of relative size (kappa R)^2 (the
+// quadratic part of E_33, docs/model.md): at L / R = 200 (kappa R = 0.031 on the full circle) the tip misses
+// the root by 9.1e-4 L, at L / R = 1000 by 3e-5 L. The tests use the slender rod so that the comparison is
+// with the closed form, not with the correction.
 
 #include <gtest/gtest.h>
 
@@ -24,8 +29,14 @@ Eigen::Vector3d tip_under_moment(const BeamCase& c, double moment, int steps) {
   return centre(sim, 2 * c.elements) - centre(sim, 0);
 }
 
+BeamCase slender() {
+  BeamCase c;
+  c.radius = 0.1;  // L / R = 1000
+  return c;
+}
+
 TEST(EndMoment, FullCircle) {
-  const BeamCase c;
+  const BeamCase c = slender();
   const Eigen::Vector3d tip = tip_under_moment(c, 2 * std::numbers::pi * c.ei() / c.length, 20);
   RecordProperty("tip_distance_over_L", std::to_string(tip.norm() / c.length));
   std::printf("full circle: |tip - root| / L = %.3e\n", tip.norm() / c.length);
@@ -33,7 +44,7 @@ TEST(EndMoment, FullCircle) {
 }
 
 TEST(EndMoment, HalfCircle) {
-  const BeamCase c;
+  const BeamCase c = slender();
   const Eigen::Vector3d tip = tip_under_moment(c, std::numbers::pi * c.ei() / c.length, 10);
   const Eigen::Vector3d expected(0, 2 * c.length / std::numbers::pi, 0);
   std::printf("half circle: tip / L = (%.6f, %.6f, %.6f), expected (0, %.6f, 0), error / L = %.3e\n",

@@ -42,6 +42,14 @@ int Conditions::add_load(std::string name, int node, const Vec3& force, const Ve
   return size() - 1;
 }
 
+void Conditions::anchor_moment(Item& item, const NodeVector& state) {
+  // The moment acts through the director most nearly normal to its axis.
+  const Vec3 g1 = state.segment<3>(3), g2 = state.segment<3>(6);
+  item.director =
+      std::abs(g1.normalized().dot(item.axis)) <= std::abs(g2.normalized().dot(item.axis)) ? 0 : 1;
+  item.angle.emplace(item.axis, item.director == 0 ? g1 : g2);
+}
+
 void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   Item& item = at(c);
   item.active = true;
@@ -50,17 +58,45 @@ void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
     item.anchor = state;
     item.translation.reset(time, Vec3::Zero());
     item.rotation.reset(time, Vec3::Zero());
+    item.force.reset(time, Vec3::Zero());
+    item.moment.reset(time, 0.0);
+    item.director_force.reset(time, NodeVector::Zero());
   } else {
-    // The moment acts through the director most nearly normal to its axis.
-    const Vec3 g1 = state.segment<3>(3), g2 = state.segment<3>(6);
-    item.director =
-        std::abs(g1.normalized().dot(item.axis)) <= std::abs(g2.normalized().dot(item.axis)) ? 0 : 1;
-    item.angle.emplace(item.axis, item.director == 0 ? g1 : g2);
+    anchor_moment(item, state);
   }
 }
 
-void Conditions::release(int c) {
-  at(c).active = false;
+void Conditions::release(int c, double time, const Eigen::VectorXd& x, const NodeVector& reaction,
+                         double end_time) {
+  Item& item = at(c);
+  if (item.active && item.kind == ConditionKind::motion) {
+    // Split the support's generalised force into a force on the centre, a moment about the fixed axis of its
+    // present value (acting as a moment load does), and what remains on the directors (their stretching
+    // part).
+    NodeVector f = NodeVector::Zero();
+    for (int d = 0; d < kNodeDofs; ++d)
+      if (item.mask[static_cast<std::size_t>(d)]) f[d] = reaction[d];
+    const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.node);
+    const Vec3 moment =
+        state.segment<3>(3).cross(f.segment<3>(3)) + state.segment<3>(6).cross(f.segment<3>(6));
+    NodeVector rest = f;
+    rest.segment<3>(0).setZero();
+    double magnitude = 0.0;
+    if (moment.norm() > 0.0) {
+      item.axis = moment.normalized();
+      anchor_moment(item, state);
+      magnitude = moment.norm();
+      const int v = 3 + 3 * item.director;
+      rest.segment<3>(v) -= magnitude * item.angle->gradient(state.segment<3>(v));
+    }
+    item.force.reset(time, f.segment<3>(0));
+    item.force.add(end_time, Vec3::Zero());
+    item.moment.reset(time, magnitude);
+    item.moment.add(end_time, 0.0);
+    item.director_force.reset(time, rest);
+    item.director_force.add(end_time, NodeVector::Zero());
+  }
+  item.active = false;
 }
 
 void Conditions::hold_until(double time) {
@@ -69,6 +105,7 @@ void Conditions::hold_until(double time) {
     if (item.rotation.last_time() < time) item.rotation.add(time, item.rotation.at(time));
     if (item.force.last_time() < time) item.force.add(time, item.force.at(time));
     if (item.moment.last_time() < time) item.moment.add(time, item.moment.at(time));
+    if (item.director_force.last_time() < time) item.director_force.add(time, item.director_force.at(time));
   }
 }
 
@@ -122,11 +159,16 @@ void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
   }
 }
 
+bool Conditions::applies_load(const Item& item) {
+  return item.kind == ConditionKind::load ? item.active : !item.active;  // a released support ramps down
+}
+
 void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
   for (const Item& item : items_) {
-    if (!item.active || item.kind != ConditionKind::load) continue;
+    if (!applies_load(item)) continue;
     const int base = kNodeDofs * item.node;
     f_ext.segment<3>(base) += item.force.at(time);
+    f_ext.segment<kNodeDofs>(base) += item.director_force.at(time);
     const double m = item.moment.at(time);
     if (m != 0.0) {
       const int v = base + 3 + 3 * item.director;
@@ -138,7 +180,7 @@ void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::Ve
 void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
                                   solver::SparseAssembler& assembler) const {
   for (const Item& item : items_) {
-    if (!item.active || item.kind != ConditionKind::load) continue;
+    if (!applies_load(item)) continue;
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
     const int v = kNodeDofs * item.node + 3 + 3 * item.director;
@@ -151,21 +193,23 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
 
 void Conditions::commit(const Eigen::VectorXd& x) {
   for (Item& item : items_)
-    if (item.active && item.angle)
+    if (applies_load(item) && item.angle)
       item.angle->commit(x.segment<3>(kNodeDofs * item.node + 3 + 3 * item.director));
 }
 
 SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd& x,
                                        const Eigen::VectorXd& residual) const {
   const Item& item = at(c);
-  SectionForce out;
-  if (!item.active) return out;
   const int base = kNodeDofs * item.node;
-  if (item.kind == ConditionKind::load) {
-    out.force = item.force.at(time);
-    out.moment = item.moment.at(time) * item.axis;
+  SectionForce out;
+  if (applies_load(item)) {
+    const NodeVector f = item.director_force.at(time);
+    out.force = item.force.at(time) + f.segment<3>(0);
+    out.moment = item.moment.at(time) * item.axis + x.segment<3>(base + 3).cross(f.segment<3>(3)) +
+                 x.segment<3>(base + 6).cross(f.segment<3>(6));
     return out;
   }
+  if (!item.active) return out;
   // f_int - f_ext at a prescribed section is what the support must supply; its moment about the centre is the
   // sum of g_a x (force on g_a).
   out.force = residual.segment<3>(base);

@@ -47,7 +47,13 @@ class Conditions {
 
   /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
   void activate(int c, double time, const Eigen::VectorXd& x);
-  void release(int c);
+  /// Switches condition c off. A motion's support is not removed at once: it is replaced by the load it
+  /// exerts at `time` in state x (`reaction`: the nine out-of-balance forces f_int - f_ext at its node),
+  /// which then decreases linearly to zero at `end_time`, so that the release is quasi-static and controlled
+  /// by the stage's steps. That load is a dead force on the centre, a moment about the fixed axis of the
+  /// reaction moment (as a load condition's moment), and dead forces on the directors for the rest. A load
+  /// simply stops.
+  void release(int c, double time, const Eigen::VectorXd& x, const NodeVector& reaction, double end_time);
 
   /// Adds a keyframe of a motion: translation [mm] and rotation vector [rad], cumulative since activation.
   void add_motion_keyframe(int c, double time, const Vec3& translation, const Vec3& rotation);
@@ -84,8 +90,10 @@ class Conditions {
     NodeVector anchor = NodeVector::Zero();
     Path<Vec3> translation{Vec3::Zero()};
     Path<Vec3> rotation{Vec3::Zero()};
-    // load
+    // load, or a released motion's support being ramped down
     Path<Vec3> force{Vec3::Zero()};
+    Path<NodeVector> director_force{
+        NodeVector::Zero()};  ///< dead generalised forces (released supports only)
     Path<double> moment{0.0};
     Vec3 axis = Vec3::UnitZ();
     int director = 0;  ///< 0: g1, 1: g2, the one the moment acts through
@@ -94,6 +102,9 @@ class Conditions {
   const Item& at(int c) const { return items_.at(static_cast<std::size_t>(c)); }
   Item& at(int c) { return items_.at(static_cast<std::size_t>(c)); }
   NodeVector prescribed_values(const Item& item, double time) const;
+  static void anchor_moment(Item& item, const NodeVector& state);
+  /// Whether the item's force and moment act: an active load, or a released motion.
+  static bool applies_load(const Item& item);
 
   std::vector<Item> items_;
 };

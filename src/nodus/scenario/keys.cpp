@@ -105,7 +105,7 @@ constexpr std::array kKeys{
   KeyDoc{"solver.max_newton_iterations", "integer", "", "25", ">= 1", "iterations per step attempt"},
   KeyDoc{"solver.residual_tolerance", "number", "", "1e-8", "> 0",
          "converged when the residual norm <= tolerance times the force scale"},
-  KeyDoc{"solver.increment_tolerance", "number", "", "1e-8", "> 0",
+  KeyDoc{"solver.increment_tolerance", "number", "", "1e-6", "> 0",
          "converged when the largest increment <= tolerance times the length scale"},
   KeyDoc{"solver.max_cutbacks", "integer", "", "12", ">= 0",
          "successive halvings of a step before giving up"},

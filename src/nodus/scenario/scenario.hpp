@@ -99,7 +99,7 @@ struct SolverSettings {
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   int max_newton_iterations = 25;     ///< per step attempt, >= 1
   double residual_tolerance = 1e-8;   ///< |R| <= tol * force scale [-], > 0
-  double increment_tolerance = 1e-8;  ///< |du|_inf <= tol * length scale [-], > 0
+  double increment_tolerance = 1e-6;  ///< |du|_inf <= tol * length scale [-], > 0
   int max_cutbacks = 12;              ///< successive halvings of a step before giving up, >= 0
   int easy_iterations = 4;            ///< a step converged in at most this many iterations lets the next grow
   bool line_search = false;           ///< slower on every verification case so far (docs/model.md)

@@ -16,7 +16,7 @@ namespace nodus::simulation {
 
 struct Tolerances {
   double residual = 1e-8;   ///< |R| <= residual * force scale
-  double increment = 1e-8;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
+  double increment = 1e-6;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
 };
 
 class EquilibriumProblem final : public solver::SteppedProblem {

@@ -124,7 +124,16 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   for (int s = 0; s < static_cast<int>(scenario_.stages.size()); ++s) {
     const scenario::StageSpec& stage = scenario_.stages[static_cast<std::size_t>(s)];
     const double t0 = time_, t1 = time_ + stage.duration;
-    for (int c : stage.release) conditions_.release(c);
+    if (!stage.release.empty()) {
+      Eigen::VectorXd residual;
+      problem_->restore();  // evaluate the support forces at the committed state
+      problem_->evaluate(residual, false);
+      for (int c : stage.release)
+        conditions_.release(
+            c, t0, problem_->committed_state(),
+            problem_->full_residual().segment<model::kDofsPerNode>(model::kDofsPerNode * conditions_.node(c)),
+            t1);
+    }
     for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
     conditions_.hold_until(t0);
     for (const scenario::MotionTarget& m : stage.motions)
@@ -142,6 +151,13 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
       break;
     }
     newton.reanalyze();
+    if (spdlog::should_log(spdlog::level::debug)) {
+      Eigen::VectorXd residual;
+      problem_->set_time(t0);
+      problem_->evaluate(residual, false);
+      spdlog::debug("stage '{}' starts with |R| = {:.3e} over {} free unknowns", stage.name, residual.norm(),
+                    residual.size());
+    }
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
     solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
