@@ -60,6 +60,12 @@ inline int add_condition(scenario::Scenario& s, const std::string& name, scenari
   return static_cast<int>(s.conditions.size()) - 1;
 }
 
+/// Keeps the record of the last converged step (reactions, iterations).
+struct LastStep : simulation::StepObserver {
+  simulation::StepRecord last;
+  void on_step(const simulation::Simulation&, const simulation::StepRecord& r) override { last = r; }
+};
+
 /// Runs the scenario with no output; fails the test if it does not converge.
 inline simulation::RunSummary run_quietly(simulation::Simulation& sim) {
   return sim.run({});

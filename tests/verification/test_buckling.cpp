@@ -54,10 +54,7 @@ TEST(Buckling, PinnedColumnFollowsTheElastica) {
       {end, {{1.0, Eigen::Vector3d(-shortening * c.length, 0, 0), Eigen::Vector3d::Zero()}}});
   s.stages.push_back(stage);
   simulation::Simulation sim(s);
-  struct Capture : simulation::StepObserver {
-    simulation::StepRecord last;
-    void on_step(const simulation::Simulation&, const simulation::StepRecord& r) override { last = r; }
-  } capture;
+  LastStep capture;
   const simulation::RunSummary summary = sim.run({&capture});
   ASSERT_TRUE(summary.converged) << summary.failure;
   const double p = -capture.last.sections[static_cast<std::size_t>(end)].force.x();

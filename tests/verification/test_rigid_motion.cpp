@@ -21,7 +21,7 @@ TEST(RigidMotion, GivesNoInternalForce) {
   const Eigen::Matrix3d q =
       Eigen::AngleAxisd(rotation_degrees.norm() * std::numbers::pi / 180, axis).matrix();
   const Eigen::Vector3d shift(12.0, -30.0, 7.0);
-  const Eigen::Vector3d start = Eigen::Vector3d::Zero(), end(c.length, 0, 0);
+  const Eigen::Vector3d end(c.length, 0, 0);
   scenario::StageSpec stage;
   stage.name = "move";
   stage.steps = 8;
@@ -29,10 +29,7 @@ TEST(RigidMotion, GivesNoInternalForce) {
   stage.motions.push_back({b, {{1.0, q * end + shift - end, rotation_degrees}}});
   s.stages.push_back(stage);
   simulation::Simulation sim(s);
-  struct Capture : simulation::StepObserver {
-    simulation::StepRecord last;
-    void on_step(const simulation::Simulation&, const simulation::StepRecord& r) override { last = r; }
-  } capture;
+  LastStep capture;
   const simulation::RunSummary summary = sim.run({&capture});
   ASSERT_TRUE(summary.converged) << summary.failure;
   const Eigen::VectorXd& x = sim.state();
@@ -47,7 +44,6 @@ TEST(RigidMotion, GivesNoInternalForce) {
     EXPECT_LT(f.force.norm(), 1e-9 * ea);
     EXPECT_LT(f.moment.norm(), 1e-9 * ea * c.length);
   }
-  (void)start;
 }
 
 }  // namespace

@@ -35,10 +35,7 @@ TEST(Tension, AxialForceAndPoissonContraction) {
       {end, {{1.0, Eigen::Vector3d((stretch - 1) * c.length, 0, 0), Eigen::Vector3d::Zero()}}});
   s.stages.push_back(stage);
   simulation::Simulation sim(s);
-  struct Capture : simulation::StepObserver {
-    simulation::StepRecord last;
-    void on_step(const simulation::Simulation&, const simulation::StepRecord& r) override { last = r; }
-  } capture;
+  LastStep capture;
   ASSERT_TRUE(sim.run({&capture}).converged);
   const double e33 = 0.5 * (stretch * stretch - 1);
   const double force = stretch * c.young * c.area() * e33;
@@ -70,10 +67,7 @@ TEST(Torsion, TorqueTwistSlope) {
   stage.motions.push_back({end, {{1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(twist_degrees, 0, 0)}}});
   s.stages.push_back(stage);
   simulation::Simulation sim(s);
-  struct Capture : simulation::StepObserver {
-    simulation::StepRecord last;
-    void on_step(const simulation::Simulation&, const simulation::StepRecord& r) override { last = r; }
-  } capture;
+  LastStep capture;
   ASSERT_TRUE(sim.run({&capture}).converged);
   const double theta = twist_degrees * std::numbers::pi / 180;
   const double torque = capture.last.sections[static_cast<std::size_t>(end)].moment.x();
