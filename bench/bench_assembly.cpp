@@ -9,6 +9,11 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_beam.hpp"
+
+using nodus::bench::kLength;
+using nodus::bench::kRadius;
+
 #include "nodus/model/model.hpp"
 #include "nodus/solver/sparse_assembler.hpp"
 
@@ -17,18 +22,9 @@ namespace {
 using nodus::model::kDofsPerNode;
 using nodus::model::Model;
 
-constexpr double kLength = 20.0;  // mm
-constexpr double kRadius = 0.1;   // mm
-
 Model make_model(int elements) {
   Model model;  // 2 Gauss points, the scenario default
-  nodus::beam::BeamDefinition def;
-  def.name = "beam";
-  def.length = kLength;
-  def.radius = kRadius;
-  def.elements = elements;
-  def.material = {4000.0, 0.3};
-  model.add_beam(def);
+  model.add_beam(nodus::bench::benchmark_beam(elements));
   return model;
 }
 

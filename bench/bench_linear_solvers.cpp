@@ -20,6 +20,11 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+
+#include "bench_beam.hpp"
+
+using nodus::bench::kLength;
+using nodus::bench::kRadius;
 #include <Eigen/SparseCholesky>
 
 #include "nodus/model/model.hpp"
@@ -33,20 +38,11 @@ using nodus::model::Model;
 using nodus::solver::LinearSolverKind;
 using nodus::solver::SparseMatrix;
 
-constexpr double kLength = 20.0;  // mm
-constexpr double kRadius = 0.1;   // mm
-
 enum class Case { pd, indefinite };
 
 Model make_model(int elements) {
   Model model;
-  nodus::beam::BeamDefinition def;
-  def.name = "beam";
-  def.length = kLength;
-  def.radius = kRadius;
-  def.elements = elements;
-  def.material = {4000.0, 0.3};
-  model.add_beam(def);
+  model.add_beam(nodus::bench::benchmark_beam(elements));
   return model;
 }
 

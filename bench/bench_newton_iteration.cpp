@@ -13,6 +13,11 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+
+#include "bench_beam.hpp"
+
+using nodus::bench::kLength;
+using nodus::bench::kRadius;
 #include <Eigen/SparseCholesky>
 
 #include "nodus/loading/boundary_conditions.hpp"
@@ -26,9 +31,6 @@ using nodus::model::kDofsPerNode;
 using nodus::model::Model;
 using nodus::solver::LinearSolverKind;
 
-constexpr double kLength = 20.0;  // mm
-constexpr double kRadius = 0.1;   // mm
-
 /// Model, conditions and problem in one place (the problem keeps references to the other two).
 struct Setup {
   Model model;
@@ -36,13 +38,7 @@ struct Setup {
   std::unique_ptr<nodus::simulation::EquilibriumProblem> problem;
 
   explicit Setup(int elements) {
-    nodus::beam::BeamDefinition def;
-    def.name = "beam";
-    def.length = kLength;
-    def.radius = kRadius;
-    def.elements = elements;
-    def.material = {4000.0, 0.3};
-    model.add_beam(def);
+    model.add_beam(nodus::bench::benchmark_beam(elements));
     const int tip = model.num_nodes() - 1;
     const int clamp =
         conditions.add_motion("clamp", 0, {true, true, true, true, true, true, true, true, true});
