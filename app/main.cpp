@@ -16,6 +16,7 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/logging.hpp"
 #include "nodus/output/progress_reporter.hpp"
@@ -42,9 +43,11 @@ int run(const std::string& scenario_path, const std::filesystem::path& out, bool
   nodus::output::StepsCsvWriter steps(out);
   nodus::output::VtkSeriesWriter vtk(out, sim.scenario().output.vtk_every, sim.scenario().output.tube_sides);
   nodus::output::FinalNodesWriter final_nodes(out);
+  nodus::output::ContactCsvWriter contact_tables(out);
   nodus::output::SummaryWriter summary_writer(out);
   nodus::output::ProgressReporter progress(sim.scenario().output.progress_seconds);
-  std::vector<nodus::simulation::StepObserver*> observers{&steps, &vtk, &final_nodes, &summary_writer};
+  std::vector<nodus::simulation::StepObserver*> observers{&steps, &vtk, &final_nodes, &contact_tables,
+                                                          &summary_writer};
   if (!quiet) observers.push_back(&progress);
   const nodus::simulation::RunSummary summary = sim.run(observers);
 

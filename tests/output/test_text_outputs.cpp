@@ -21,10 +21,11 @@
 namespace nodus::output {
 namespace {
 
-TEST(StepsCsv, HeaderNamesSixColumnsPerCondition) {
-  EXPECT_EQ(steps_csv_header({}), "step,stage,time,newton_iterations,cutbacks,residual,increment");
+TEST(StepsCsv, HeaderNamesContactCountsThenSixColumnsPerCondition) {
+  EXPECT_EQ(steps_csv_header({}),
+            "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements");
   EXPECT_EQ(steps_csv_header({"left", "right"}),
-            "step,stage,time,newton_iterations,cutbacks,residual,increment,"
+            "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,"
             "left_fx,left_fy,left_fz,left_mx,left_my,left_mz,right_fx,right_fy,right_fz,right_mx,right_my,"
             "right_mz");
 }
@@ -42,12 +43,34 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   s.force = Eigen::Vector3d(1, -2, 0.125);
   s.moment = Eigen::Vector3d(0, 1234.5, -1e-20);
   r.sections = {s};
-  EXPECT_EQ(steps_csv_row(r, "bend", 1), "7,bend,0.3333333333,4,1,2.5e-09,1e-12,1,-2,0.125,0,1234.5,-1e-20");
+  // Without contact the zone and element counts are 0.
+  EXPECT_EQ(steps_csv_row(r, "bend", 1),
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,1,-2,0.125,0,1234.5,-1e-20");
+  r.zones = 3;
+  r.contact_elements = 41;
+  EXPECT_EQ(steps_csv_row(r, "bend", 1),
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,1,-2,0.125,0,1234.5,-1e-20");
   // A missing section gives empty fields; a stage name with a comma is quoted.
   const std::string row = steps_csv_row(r, "a,b", 2);
-  EXPECT_EQ(testing::split(row, ',').size(), 7u + 12u + 1u);  // the quoted comma splits once more
+  EXPECT_EQ(testing::split(row, ',').size(), 9u + 12u + 1u);  // the quoted comma splits once more
   EXPECT_NE(row.find(",\"a,b\","), std::string::npos);
   EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,");
+}
+
+TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
+  simulation::StepRecord r;
+  r.step = 2;
+  r.zones = 1;
+  r.contact_elements = 6;
+  r.sections.resize(2);
+  const auto header = testing::split(steps_csv_header({"left", "right"}), ',');
+  const auto fields = testing::split(steps_csv_row(r, "s", 2), ',');
+  ASSERT_EQ(fields.size(), header.size());
+  ASSERT_EQ(header[7], "zones");
+  ASSERT_EQ(header[8], "contact_elements");
+  EXPECT_EQ(fields[7], "1");
+  EXPECT_EQ(fields[8], "6");
+  EXPECT_EQ(header[9], "left_fx");
 }
 
 TEST(Summary, JsonHoldsEveryField) {
@@ -60,6 +83,7 @@ TEST(Summary, JsonHoldsEveryField) {
   d.newton_iterations = 163;
   d.converged = false;
   d.wall_seconds = 1.5;
+  d.detection_seconds = 0.25;
   d.failure = "stage \"bend\": no convergence";
   d.final_time = 0.75;
   d.scenario = "scenarios/two_beams.yaml";
@@ -76,10 +100,11 @@ TEST(Summary, JsonHoldsEveryField) {
   EXPECT_EQ(j.at("newton_iterations"), 163);
   EXPECT_EQ(j.at("converged"), false);
   EXPECT_EQ(j.at("wall_seconds"), 1.5);
+  EXPECT_EQ(j.at("detection_seconds"), 0.25);
   EXPECT_EQ(j.at("failure"), d.failure);
   EXPECT_EQ(j.at("final_time"), 0.75);
   EXPECT_EQ(j.at("scenario"), d.scenario);
-  EXPECT_EQ(j.size(), 11u);
+  EXPECT_EQ(j.size(), 12u);
 #else
   for (const char* key : {"\"dofs\": 72", "\"nodes\": 8", "\"elements\": 3", "\"beams\": 2", "\"steps\": 40",
                           "\"newton_iterations\": 163", "\"converged\": false", "\"wall_seconds\": 1.5",

@@ -79,6 +79,9 @@ TEST(ScenarioKeys, ExpectedTexts) {
   EXPECT_EQ(expected_text(scenario_key("units.length")), "exactly mm");
   EXPECT_EQ(expected_text(scenario_key("solver.line_search")), "true or false");
   EXPECT_EQ(expected_text(scenario_key("beams[].start")), "a list of 3 numbers (mm)");
+  EXPECT_EQ(expected_text(scenario_key("contact.proximity_distance")), "a number > 0 or auto (mm)");
+  EXPECT_EQ(expected_text(scenario_key("contact.beams")), "a list of beam names, non-empty, each beam once");
+  EXPECT_EQ(expected_text(scenario_key("contact")), "a map");
   EXPECT_THROW(scenario_key("no.such.key"), std::logic_error);
 }
 
@@ -107,6 +110,24 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   EXPECT_EQ(number(scenario_key("beams[].bending_factor").default_value), beam.bending_factor);
   EXPECT_EQ(scenario_key("beams[].start").default_value, "[0, 0, 0]");
   EXPECT_EQ(scenario_key("beams[].direction").default_value, "[1, 0, 0]");
+  const ContactSettings contact;
+  EXPECT_EQ(scenario_key("contact.enabled").default_value, "true");  // when the section is present
+  EXPECT_FALSE(contact.enabled);                                     // no section: no contact
+  EXPECT_EQ(scenario_key("contact.self_contact").default_value, contact.self_contact ? "true" : "false");
+  EXPECT_EQ(scenario_key("contact.beams").default_value, "all beams");
+  EXPECT_TRUE(contact.beams.empty());
+  for (const char* key :
+       {"contact.proximity_distance", "contact.separation_distance", "contact.test_point_spacing",
+        "contact.matching_length", "contact.element_spacing"}) {
+    EXPECT_EQ(scenario_key(key).default_value, "auto") << key;
+    EXPECT_EQ(scenario_key(key).unit, "mm") << key;
+  }
+  EXPECT_EQ(contact.proximity_distance, 0.0);
+  EXPECT_EQ(contact.separation_distance, 0.0);
+  EXPECT_EQ(contact.test_point_spacing, 0.0);
+  EXPECT_EQ(contact.matching_length, 0.0);
+  EXPECT_EQ(contact.element_spacing, 0.0);
+
   const StageSpec stage;
   EXPECT_EQ(number(scenario_key("stages[].duration").default_value), stage.duration);
   EXPECT_EQ(scenario_key("conditions[].active").default_value,

@@ -218,6 +218,15 @@ output:
   vtk_every: 0
   tube_sides: 16
   progress_seconds: 0
+contact:
+  enabled: true
+  self_contact: false
+  beams: [vertical, rod]
+  proximity_distance: 0.5
+  separation_distance: auto
+  test_point_spacing: 0.3
+  matching_length: 0.6
+  element_spacing: 0.05
 )";
 
 TEST(ScenarioReader, FullScenarioResolves) {
@@ -338,6 +347,14 @@ TEST(ScenarioReader, FullScenarioResolves) {
   EXPECT_EQ(s.output.vtk_every, 0);
   EXPECT_EQ(s.output.tube_sides, 16);
   EXPECT_DOUBLE_EQ(s.output.progress_seconds, 0.0);
+  EXPECT_TRUE(s.contact.enabled);
+  EXPECT_FALSE(s.contact.self_contact);
+  EXPECT_EQ(s.contact.beams, (std::vector<int>{2, 0}));
+  EXPECT_DOUBLE_EQ(s.contact.proximity_distance, 0.5);
+  EXPECT_EQ(s.contact.separation_distance, 0.0);  // auto
+  EXPECT_DOUBLE_EQ(s.contact.test_point_spacing, 0.3);
+  EXPECT_DOUBLE_EQ(s.contact.matching_length, 0.6);
+  EXPECT_DOUBLE_EQ(s.contact.element_spacing, 0.05);
 }
 
 TEST(ScenarioReader, DefaultsOfOptionalSections) {
@@ -353,6 +370,8 @@ TEST(ScenarioReader, DefaultsOfOptionalSections) {
   EXPECT_EQ(s.conditions[1].node, 20);  // end
   EXPECT_TRUE(s.conditions[2].moment.isZero());
   EXPECT_TRUE(s.stages[0].loads[0].moment.isZero());
+  EXPECT_FALSE(s.contact.enabled);  // no contact section: no contact
+  EXPECT_TRUE(s.contact.beams.empty());
 }
 
 TEST(ScenarioReader, OptionalListsAndMapsMayBeEmpty) {
@@ -364,8 +383,9 @@ TEST(ScenarioReader, OptionalListsAndMapsMayBeEmpty) {
   yaml = with_line(yaml, 17, "");
   yaml = with_line(yaml, 17, "    loads: {}");
   yaml = with_line(yaml, 18, "");
-  yaml += "solver:\noutput: {}\n";
+  yaml += "solver:\noutput: {}\ncontact: {}\n";
   const Scenario s = parse_scenario(yaml, "knot.yaml");
+  EXPECT_TRUE(s.contact.enabled);  // an empty contact section switches contact on
   EXPECT_TRUE(s.conditions.empty());
   EXPECT_TRUE(s.stages[0].motions.empty());
   EXPECT_TRUE(s.stages[0].loads.empty());
@@ -405,6 +425,7 @@ TEST(ScenarioErrors, UnknownKeys) {
                        "stages[0].motions.tip.spin"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  tolerance: 1\n", 35, "solver.tolerance"));
   EXPECT_TRUE(fails_at(kBase + "output: {vtk: 1}\n", 34, "output.vtk"));
+  EXPECT_TRUE(fails_at(kBase + "contact:\n  self_contact: true\n  friction: 0.1\n", 36, "contact.friction"));
   EXPECT_TRUE(fails_at(kBase + "units: {length: mm, mass: kg}\n", 34, "units.mass"));
   const std::string message = error_of(after_line(kBase, 8, "    radus: 1"));
   EXPECT_NE(message.find("radius"), std::string::npos) << message;  // lists the allowed keys
@@ -713,6 +734,18 @@ void expect_same(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.output.vtk_every, b.output.vtk_every);
   EXPECT_EQ(a.output.tube_sides, b.output.tube_sides);
   EXPECT_EQ(a.output.progress_seconds, b.output.progress_seconds);
+  EXPECT_EQ(a.contact.enabled, b.contact.enabled);
+  EXPECT_EQ(a.contact.self_contact, b.contact.self_contact);
+  // describe names every beam where the file leaves contact.beams out (all beams)
+  std::vector<int> all_beams(a.beams.size());
+  for (std::size_t i = 0; i < all_beams.size(); ++i) all_beams[i] = static_cast<int>(i);
+  EXPECT_EQ(a.contact.beams.empty() ? all_beams : a.contact.beams,
+            b.contact.beams.empty() ? all_beams : b.contact.beams);
+  EXPECT_EQ(a.contact.proximity_distance, b.contact.proximity_distance);
+  EXPECT_EQ(a.contact.separation_distance, b.contact.separation_distance);
+  EXPECT_EQ(a.contact.test_point_spacing, b.contact.test_point_spacing);
+  EXPECT_EQ(a.contact.matching_length, b.contact.matching_length);
+  EXPECT_EQ(a.contact.element_spacing, b.contact.element_spacing);
 }
 
 bool contains(const std::string& text, const std::string& part) {
@@ -735,6 +768,10 @@ TEST(ScenarioDescribe, ShowsResolvedValuesAndDefaults) {
   EXPECT_TRUE(contains(text, "linear_solver: umfpack")) << text;
   EXPECT_TRUE(contains(text, "residual_tolerance: 1e-10")) << text;
   EXPECT_TRUE(contains(text, "tube_sides: 16")) << text;
+  EXPECT_TRUE(contains(text,
+                       "  self_contact: false\n  beams: [vertical, rod]\n  proximity_distance: 0.5  # mm\n"
+                       "  separation_distance: auto  # mm\n"))
+      << text;
 
   const std::string base = describe(parse_scenario(kBase, "knot.yaml"));
   EXPECT_TRUE(contains(base, "gauss_points: 2")) << base;
@@ -743,6 +780,7 @@ TEST(ScenarioDescribe, ShowsResolvedValuesAndDefaults) {
   EXPECT_TRUE(contains(base, "duration: 1")) << base;
   EXPECT_TRUE(contains(base, "dofs: [all]")) << base;
   EXPECT_TRUE(contains(base, "active: false")) << base;
+  EXPECT_TRUE(contains(base, "contact:\n  enabled: false\n")) << base;
 }
 
 TEST(ScenarioDescribe, IsItselfAValidScenarioWithTheSameContent) {

@@ -9,7 +9,7 @@
 namespace nodus::output {
 
 std::string steps_csv_header(const std::vector<std::string>& condition_names) {
-  std::string header = "step,stage,time,newton_iterations,cutbacks,residual,increment";
+  std::string header = "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements";
   for (const std::string& name : condition_names)
     for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz"})
       header += "," + csv_field(name + "_" + component);
@@ -19,9 +19,9 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names) {
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions) {
   fmt::memory_buffer row;
-  fmt::format_to(std::back_inserter(row), "{},{},{:.10g},{},{},{:.10g},{:.10g}", record.step,
+  fmt::format_to(std::back_inserter(row), "{},{},{:.10g},{},{},{:.10g},{:.10g},{},{}", record.step,
                  csv_field(stage_name), record.time, record.newton_iterations, record.cutbacks,
-                 record.residual, record.increment);
+                 record.residual, record.increment, record.zones, record.contact_elements);
   for (int c = 0; c < num_conditions; ++c) {
     if (c < static_cast<int>(record.sections.size())) {
       const loading::SectionForce& s = record.sections[static_cast<std::size_t>(c)];

@@ -1,6 +1,7 @@
 #pragma once
-/// DIR/steps.csv: one row per converged load step (step counters, Newton statistics and the force and moment
-/// on every condition's section). Columns are documented in docs/output.md.
+/// DIR/steps.csv: one row per converged load step (step counters, Newton statistics, the size of the contact
+/// geometry and the force and moment on every condition's section). Columns are documented in
+/// docs/output.md.
 
 #include <cstdio>
 #include <filesystem>
@@ -11,13 +12,14 @@
 
 namespace nodus::output {
 
-/// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment, then
-/// NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
+/// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment,zones,
+/// contact_elements, then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
 std::string steps_csv_header(const std::vector<std::string>& condition_names);
 
 /// One data line (no line end) for `record`, the stage column holding `stage_name`; numbers with ten
-/// significant digits: time [s], residual [N], increment [-], forces [N], moments [N mm]. Sections missing
-/// from the record (fewer than `num_conditions`) give empty fields.
+/// significant digits: time [s], residual [N], increment [-], forces [N], moments [N mm]; `zones` and
+/// `contact_elements` are the record's counts (0 without contact). Sections missing from the record (fewer
+/// than `num_conditions`) give empty fields.
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions);
 

@@ -19,6 +19,7 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.newton_iterations = summary.newton_iterations;
   data.converged = summary.converged;
   data.wall_seconds = summary.wall_seconds;
+  data.detection_seconds = summary.detection_seconds;
   data.failure = summary.failure;
   data.final_time = sim.time();
   data.scenario = sim.scenario().path;
@@ -34,6 +35,7 @@ std::string summary_json(const SummaryData& data) {
   j["newton_iterations"] = data.newton_iterations;
   j["final_time"] = data.final_time;
   j["wall_seconds"] = data.wall_seconds;
+  j["detection_seconds"] = data.detection_seconds;
   j["beams"] = data.beams;
   j["nodes"] = data.nodes;
   j["elements"] = data.elements;

@@ -8,11 +8,13 @@
 
 #include "nodus/beam/strain_measures.hpp"
 #include "nodus/output/atomic_file.hpp"
+#include "nodus/output/vtk_xml.hpp"
 
 namespace nodus::output {
 namespace {
 
 constexpr int kNode = model::kDofsPerNode;
+using vtk_xml::ChunkedWriter;
 
 void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_sides) {
   if (x.size() != model.num_dofs())
@@ -22,38 +24,11 @@ void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_
     throw std::invalid_argument(fmt::format("VTK output: tube_sides = {}, must be >= 3", tube_sides));
 }
 
-/// Appends formatted values to a buffer and hands it to the stream in chunks.
-class ChunkedWriter {
- public:
-  explicit ChunkedWriter(std::ostream& out) : out_(out) {}
-  ~ChunkedWriter() { flush(); }
-  ChunkedWriter(const ChunkedWriter&) = delete;
-  ChunkedWriter& operator=(const ChunkedWriter&) = delete;
-
-  template <typename... Args>
-  void print(fmt::format_string<Args...> format, Args&&... args) {
-    fmt::format_to(std::back_inserter(buffer_), format, std::forward<Args>(args)...);
-    if (buffer_.size() > (1u << 20)) flush();
-  }
-  void flush() {
-    out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
-    buffer_.clear();
-  }
-
- private:
-  std::ostream& out_;
-  fmt::memory_buffer buffer_;
-};
-
 /// A point-data array with one value (or 3-vector) per node, repeated for the node's ring points.
 template <typename ValueOfNode>
 void node_array(ChunkedWriter& w, const char* type, const char* name, int components, int num_nodes,
                 int tube_sides, ValueOfNode value_of_node) {
-  if (components == 1)
-    w.print("        <DataArray type=\"{}\" Name=\"{}\" format=\"ascii\">\n", type, name);
-  else
-    w.print("        <DataArray type=\"{}\" Name=\"{}\" NumberOfComponents=\"{}\" format=\"ascii\">\n", type,
-            name, components);
+  vtk_xml::begin_data_array(w, type, name, components);
   for (int n = 0; n < num_nodes; ++n) {
     value_of_node(n);
     w.print("\n");
@@ -63,13 +38,7 @@ void node_array(ChunkedWriter& w, const char* type, const char* name, int compon
       value_of_node(n);
       w.print("\n");
     }
-  w.print("        </DataArray>\n");
-}
-
-void index_array(ChunkedWriter& w, const char* name, const std::vector<std::int64_t>& values) {
-  w.print("        <DataArray type=\"Int64\" Name=\"{}\" format=\"ascii\">\n", name);
-  for (std::size_t i = 0; i < values.size(); ++i) w.print("{}{}", values[i], i % 16 == 15 ? '\n' : ' ');
-  w.print("\n        </DataArray>\n");
+  vtk_xml::end_data_array(w);
 }
 
 }  // namespace
@@ -133,21 +102,9 @@ void write_vtp(std::ostream& out, const model::Model& model, const Eigen::Vector
       beam_of_node[static_cast<std::size_t>(model.beam(b).node(i))] = b;
 
   ChunkedWriter w(out);
-  w.print("<?xml version=\"1.0\"?>\n");
-  w.print("<VTKFile type=\"PolyData\" version=\"0.1\" byte_order=\"LittleEndian\">\n");
-  w.print("  <PolyData>\n");
-  if (time) {
-    w.print("    <FieldData>\n");
-    w.print(
-        "      <DataArray type=\"Float64\" Name=\"TimeValue\" NumberOfTuples=\"1\" format=\"ascii\">{}"
-        "</DataArray>\n",
-        *time);
-    w.print("    </FieldData>\n");
-  }
-  w.print(
-      "    <Piece NumberOfPoints=\"{}\" NumberOfVerts=\"0\" NumberOfLines=\"{}\" NumberOfStrips=\"0\" "
-      "NumberOfPolys=\"{}\">\n",
-      mesh.points.cols(), mesh.line_offsets.size(), mesh.poly_offsets.size());
+  vtk_xml::begin_polydata(w, time,
+                          {mesh.points.cols(), static_cast<std::int64_t>(mesh.line_offsets.size()),
+                           static_cast<std::int64_t>(mesh.poly_offsets.size())});
 
   w.print("      <PointData Scalars=\"beam\" Vectors=\"displacement\">\n");
   node_array(w, "Int32", "beam", 1, num_nodes, tube_sides,
@@ -168,25 +125,10 @@ void write_vtp(std::ostream& out, const model::Model& model, const Eigen::Vector
                [&](int n) { w.print("{:.12g}", strains(k, n)); });
   w.print("      </PointData>\n");
 
-  w.print("      <Points>\n");
-  w.print("        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-  for (Eigen::Index p = 0; p < mesh.points.cols(); ++p)
-    w.print("{:.12g} {:.12g} {:.12g}\n", mesh.points(0, p), mesh.points(1, p), mesh.points(2, p));
-  w.print("        </DataArray>\n");
-  w.print("      </Points>\n");
-
-  w.print("      <Lines>\n");
-  index_array(w, "connectivity", mesh.line_connectivity);
-  index_array(w, "offsets", mesh.line_offsets);
-  w.print("      </Lines>\n");
-  w.print("      <Polys>\n");
-  index_array(w, "connectivity", mesh.poly_connectivity);
-  index_array(w, "offsets", mesh.poly_offsets);
-  w.print("      </Polys>\n");
-
-  w.print("    </Piece>\n");
-  w.print("  </PolyData>\n");
-  w.print("</VTKFile>\n");
+  vtk_xml::points(w, mesh.points.cols(), [&](std::int64_t p) { return mesh.points.col(p); });
+  vtk_xml::cells(w, "Lines", mesh.line_connectivity, mesh.line_offsets);
+  vtk_xml::cells(w, "Polys", mesh.poly_connectivity, mesh.poly_offsets);
+  vtk_xml::end_polydata(w);
 }
 
 void write_vtp(const std::filesystem::path& path, const model::Model& model, const Eigen::VectorXd& x,

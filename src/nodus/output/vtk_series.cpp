@@ -7,7 +7,28 @@
 
 #include <fmt/format.h>
 
+#include "nodus/output/contact_vtk.hpp"
+
 namespace nodus::output {
+
+bool VtkSeries::Collection::has(int step) const {
+  return std::find(steps.begin(), steps.end(), step) != steps.end();
+}
+
+void VtkSeries::Collection::add(int step, double time, const std::string& file) {
+  const auto it = std::find(steps.begin(), steps.end(), step);
+  if (it == steps.end()) {
+    steps.push_back(step);
+    entries.push_back({time, file});
+  } else {
+    entries[static_cast<std::size_t>(it - steps.begin())].time = time;
+  }
+}
+
+void VtkSeries::Collection::clear() {
+  steps.clear();
+  entries.clear();
+}
 
 VtkSeries::VtkSeries(std::filesystem::path dir, int tube_sides)
     : dir_(std::move(dir)), tube_sides_(tube_sides) {
@@ -19,43 +40,46 @@ std::string VtkSeries::file_name(int step) {
   return fmt::format("step_{:06d}.vtp", step);
 }
 
-void VtkSeries::begin() {
+std::string VtkSeries::contact_file_name(int step) {
+  return fmt::format("contact_{:06d}.vtp", step);
+}
+
+void VtkSeries::begin(bool contact) {
   const std::filesystem::path vtk = dir_ / "vtk";
   std::error_code error;
   std::filesystem::create_directories(vtk, error);
   if (error) throw std::runtime_error("cannot create folder '" + vtk.string() + "': " + error.message());
-  const std::regex step_file(R"(step_[0-9]{6,}\.vtp)");
+  const std::regex series_file(R"((step|contact)_[0-9]{6,}\.vtp)");
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::directory_iterator(vtk, error))
-    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), step_file))
+    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), series_file))
       stale.push_back(entry.path());
   if (error) throw std::runtime_error("cannot list folder '" + vtk.string() + "': " + error.message());
+  if (!contact && std::filesystem::exists(contact_pvd_path())) stale.push_back(contact_pvd_path());
   for (const auto& path : stale) {
     std::filesystem::remove(path, error);
     if (error) throw std::runtime_error("cannot remove old file '" + path.string() + "': " + error.message());
   }
-  steps_.clear();
-  entries_.clear();
-  write_pvd(pvd_path(), entries_);
+  beams_.clear();
+  contact_.clear();
+  write_pvd(pvd_path(), beams_.entries);
+  if (contact) write_pvd(contact_pvd_path(), contact_.entries);
   begun_ = true;
 }
 
-bool VtkSeries::written(int step) const {
-  return std::find(steps_.begin(), steps_.end(), step) != steps_.end();
-}
-
-void VtkSeries::write(int step, double time, const model::Model& model, const Eigen::VectorXd& x) {
-  if (!begun_) begin();
+void VtkSeries::write(int step, double time, const model::Model& model, const Eigen::VectorXd& x,
+                      const contact::ContactGeometry* contact) {
+  if (!begun_) begin(contact != nullptr);
   const std::string name = file_name(step);
   write_vtp(dir_ / "vtk" / name, model, x, tube_sides_, time);
-  const auto it = std::find(steps_.begin(), steps_.end(), step);
-  if (it == steps_.end()) {
-    steps_.push_back(step);
-    entries_.push_back({time, "vtk/" + name});
-  } else {
-    entries_[static_cast<std::size_t>(it - steps_.begin())].time = time;
+  beams_.add(step, time, "vtk/" + name);
+  write_pvd(pvd_path(), beams_.entries);
+  if (contact) {
+    const std::string contact_name = contact_file_name(step);
+    write_contact_vtp(dir_ / "vtk" / contact_name, *contact, time);
+    contact_.add(step, time, "vtk/" + contact_name);
+    write_pvd(contact_pvd_path(), contact_.entries);
   }
-  write_pvd(pvd_path(), entries_);
 }
 
 }  // namespace nodus::output

@@ -1,6 +1,8 @@
 #pragma once
 /// A series of VTK pictures of one run: DIR/vtk/step_NNNNNN.vtp files and the collection DIR/result.pvd that
-/// lists them with their load times, rewritten after every file so that it is valid at any moment.
+/// lists them with their load times, rewritten after every file so that it is valid at any moment. With a
+/// contact geometry, the same steps also get DIR/vtk/contact_NNNNNN.vtp (contact_vtk.hpp), collected in
+/// DIR/contact.pvd.
 
 #include <filesystem>
 #include <string>
@@ -8,6 +10,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/output/vtk_format.hpp"
 
@@ -18,27 +21,48 @@ class VtkSeries {
   /// `dir`: output folder; `tube_sides`: facets around each tube (>= 3).
   VtkSeries(std::filesystem::path dir, int tube_sides);
 
-  /// Creates DIR/vtk, removes step_*.vtp files left there by an earlier run and writes an empty result.pvd.
-  void begin();
+  /// Creates DIR/vtk, removes step_*.vtp and contact_*.vtp files left there by an earlier run and writes an
+  /// empty result.pvd; with `contact`, also an empty contact.pvd, without, removes a contact.pvd left by an
+  /// earlier run.
+  void begin(bool contact = false);
   /// Writes DIR/vtk/step_NNNNNN.vtp (NNNNNN = `step`, six digits at least) of state `x` at load time `time`
-  /// [s], then rewrites result.pvd. Writing a step again replaces its file and entry.
-  void write(int step, double time, const model::Model& model, const Eigen::VectorXd& x);
+  /// [s], then rewrites result.pvd. With `contact` (not null), then also writes DIR/vtk/contact_NNNNNN.vtp of
+  /// that geometry and rewrites contact.pvd. Writing a step again replaces its files and entries.
+  void write(int step, double time, const model::Model& model, const Eigen::VectorXd& x,
+             const contact::ContactGeometry* contact = nullptr);
 
   bool begun() const { return begun_; }
-  bool written(int step) const;
-  /// The files written so far, in order of writing.
-  const std::vector<PvdEntry>& entries() const { return entries_; }
+  /// Whether the picture of the beams at `step` was written.
+  bool written(int step) const { return beams_.has(step); }
+  /// The beam files written so far, in order of writing.
+  const std::vector<PvdEntry>& entries() const { return beams_.entries; }
+  /// The contact files written so far, in order of writing.
+  const std::vector<PvdEntry>& contact_entries() const { return contact_.entries; }
   /// DIR/result.pvd.
   std::filesystem::path pvd_path() const { return dir_ / "result.pvd"; }
+  /// DIR/contact.pvd.
+  std::filesystem::path contact_pvd_path() const { return dir_ / "contact.pvd"; }
   /// "step_000012.vtp" for step 12.
   static std::string file_name(int step);
+  /// "contact_000012.vtp" for step 12.
+  static std::string contact_file_name(int step);
 
  private:
+  /// The files of one collection, with the step of each.
+  struct Collection {
+    std::vector<int> steps;
+    std::vector<PvdEntry> entries;
+    bool has(int step) const;
+    /// Adds the entry of `step`, or updates its time if it is there.
+    void add(int step, double time, const std::string& file);
+    void clear();
+  };
+
   std::filesystem::path dir_;
   int tube_sides_;
   bool begun_ = false;
-  std::vector<int> steps_;  ///< step of each entry
-  std::vector<PvdEntry> entries_;
+  Collection beams_;
+  Collection contact_;
 };
 
 }  // namespace nodus::output

@@ -12,20 +12,21 @@ VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, int every, int tube_
 }
 
 void VtkSeriesWriter::on_start(const simulation::Simulation& sim) {
-  series_.begin();
+  series_.begin(sim.contact() != nullptr);
   last_step_ = 0;
-  series_.write(0, sim.time(), sim.model(), sim.state());
+  series_.write(0, sim.time(), sim.model(), sim.state(), sim.contact());
 }
 
 void VtkSeriesWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {
   last_step_ = record.step;
   if (every_ > 0 && record.step % every_ == 0)
-    series_.write(record.step, record.time, sim.model(), sim.state());
+    series_.write(record.step, record.time, sim.model(), sim.state(), sim.contact());
 }
 
 void VtkSeriesWriter::on_finish(const simulation::Simulation& sim,
                                 const simulation::RunSummary& /*summary*/) {
-  if (!series_.written(last_step_)) series_.write(last_step_, sim.time(), sim.model(), sim.state());
+  if (!series_.written(last_step_))
+    series_.write(last_step_, sim.time(), sim.model(), sim.state(), sim.contact());
 }
 
 }  // namespace nodus::output

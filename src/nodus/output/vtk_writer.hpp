@@ -1,6 +1,8 @@
 #pragma once
 /// VTK output of a run: a picture of the initial state, of every `every`-th converged step and of the final
-/// converged state, collected in DIR/result.pvd (see vtk_format.hpp and vtk_series.hpp).
+/// converged state, collected in DIR/result.pvd (see vtk_format.hpp and vtk_series.hpp); when the run has
+/// contact (Simulation::contact() not null), a picture of the contact geometry for the same steps, collected
+/// in DIR/contact.pvd (see contact_vtk.hpp).
 
 #include <filesystem>
 
@@ -11,9 +13,9 @@ namespace nodus::output {
 
 class VtkSeriesWriter : public simulation::StepObserver {
  public:
-  /// `dir`: output folder (files go to DIR/vtk/ and DIR/result.pvd); `every`: write every N-th converged step
-  /// (0: only the initial and the final state), >= 0; `tube_sides`: facets around each tube, >= 3.
-  /// Throws std::invalid_argument on bad settings.
+  /// `dir`: output folder (files go to DIR/vtk/, DIR/result.pvd and DIR/contact.pvd); `every`: write every
+  /// N-th converged step (0: only the initial and the final state), >= 0; `tube_sides`: facets around each
+  /// tube, >= 3. Throws std::invalid_argument on bad settings.
   VtkSeriesWriter(std::filesystem::path dir, int every, int tube_sides);
 
   void on_start(const simulation::Simulation& sim) override;

@@ -120,6 +120,31 @@ constexpr std::array kKeys{
   KeyDoc{"output.tube_sides", "integer", "", "12", ">= 3", "facets around each tube in the VTK output"},
   KeyDoc{"output.progress_seconds", "number", "s", "1", ">= 0",
          "minimum interval between progress lines on stderr"},
+
+  KeyDoc{"contact", "map", "", "-", "",
+         "contact detection between the beams (docs/contact.md); absent: no contact, present (even empty): "
+         "on. The lengths are the paper's delta_prox, delta_separ, h_dist, l_p, h_c (Durville 2012, "
+         "Eq. 24-48); auto ones are derived when the run starts, with R the largest radius of the contact "
+         "beams"},
+  KeyDoc{"contact.enabled", "bool", "", "true", "", "false: contact is off although the section is present"},
+  KeyDoc{"contact.self_contact", "bool", "", "true", "",
+         "also detect contact between separate parts of one beam"},
+  KeyDoc{"contact.beams", "list", "", "all beams", "of beam names, non-empty, each beam once",
+         "the beams that take part in contact"},
+  KeyDoc{"contact.proximity_distance", "number", "mm", "auto", "> 0 or auto",
+         "delta_prox: largest axis-to-axis distance of a proximity (candidate contact). auto: 3 R, i.e. 1.5 "
+         "times the contact distance 2 R"},
+  KeyDoc{"contact.separation_distance", "number", "mm", "auto", "> 0 or auto, > proximity_distance",
+         "delta_separ: smallest distance along one beam between two of its parts paired for self contact. "
+         "auto: 4 proximity_distance"},
+  KeyDoc{"contact.test_point_spacing", "number", "mm", "auto", "> 0 or auto",
+         "h_dist: spacing of the test points along each beam. auto: sqrt(proximity_distance^2 - (2 R)^2), "
+         "at least proximity_distance / 2"},
+  KeyDoc{"contact.matching_length", "number", "mm", "auto", "> 0 or auto, >= test_point_spacing",
+         "l_p: length of an elementary matching interval. auto: 2 test_point_spacing"},
+  KeyDoc{"contact.element_spacing", "number", "mm", "auto", "> 0 or auto",
+         "h_c: spacing of the contact elements along a proximity zone. auto: h / 2, h the smaller element "
+         "length of the zone's two beams"},
 };
 // clang-format on
 

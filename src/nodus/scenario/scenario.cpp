@@ -765,6 +765,47 @@ OutputSettings read_output(const Reader& reader, const MapView& top) {
   return output;
 }
 
+ContactSettings read_contact(const Reader& reader, const MapView& top, const NameTable& beam_names) {
+  ContactSettings contact;
+  const auto field = top.get("contact");
+  if (!field) return contact;
+  const MapView map(reader, *field);
+  contact.enabled = true;
+  if (const auto value = map.get("enabled")) contact.enabled = reader.boolean(*value);
+  if (const auto value = map.get("self_contact")) contact.self_contact = reader.boolean(*value);
+  if (const auto value = map.get("beams")) {
+    for (const Field& item : reader.list(*value, true)) {
+      const auto index = beam_names.find(item.node.IsScalar() ? item.node.Scalar() : std::string());
+      if (!index) reader.fail(item, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
+      if (std::find(contact.beams.begin(), contact.beams.end(), *index) != contact.beams.end()) {
+        reader.fail(item, "each beam once in contact.beams");
+      }
+      contact.beams.push_back(*index);
+    }
+  }
+
+  // A length is > 0, or auto (absent, or the word auto), which leaves it at 0. Returns the field of an
+  // explicit value.
+  const auto length = [&](std::string_view key, double& out) -> std::optional<Field> {
+    const auto value = map.get(key);
+    if (!value || (is_plain_scalar(value->node) && value->node.Scalar() == "auto")) return std::nullopt;
+    out = reader.number(*value, [](double v) { return v > 0.0; });
+    return value;
+  };
+  const auto proximity = length("proximity_distance", contact.proximity_distance);
+  const auto separation = length("separation_distance", contact.separation_distance);
+  const auto spacing = length("test_point_spacing", contact.test_point_spacing);
+  const auto matching = length("matching_length", contact.matching_length);
+  length("element_spacing", contact.element_spacing);
+  if (spacing && matching && contact.matching_length < contact.test_point_spacing) {
+    reader.fail(*matching, ">= test_point_spacing (successive matching intervals must overlap)");
+  }
+  if (proximity && separation && contact.separation_distance <= contact.proximity_distance) {
+    reader.fail(*separation, "> proximity_distance (neighbouring parts of a beam would be paired)");
+  }
+  return contact;
+}
+
 Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) {
     std::string keys;
@@ -790,6 +831,7 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
   scenario.stages = read_stages(reader, top, condition_names, scenario.conditions, moment_axes);
   scenario.solver = read_solver(reader, top);
   scenario.output = read_output(reader, top);
+  scenario.contact = read_contact(reader, top, beam_names);
   return scenario;
 }
 
@@ -973,6 +1015,31 @@ std::string describe(const Scenario& scenario) {
   line(fmt::format("  vtk_every: {}", output.vtk_every));
   line(fmt::format("  tube_sides: {}", output.tube_sides));
   line(fmt::format("  progress_seconds: {}  # s", format_number(output.progress_seconds)));
+
+  const ContactSettings& contact = scenario.contact;
+  line("contact:");
+  line(fmt::format("  enabled: {}", contact.enabled ? "true" : "false"));
+  line(fmt::format("  self_contact: {}", contact.self_contact ? "true" : "false"));
+  std::string beams = "[";
+  if (contact.beams.empty()) {
+    for (std::size_t i = 0; i < scenario.beams.size(); ++i) {
+      beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams[i].name);
+    }
+    line(fmt::format("  beams: {}]  # all beams", beams));
+  } else {
+    for (std::size_t i = 0; i < contact.beams.size(); ++i) {
+      beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams.at(contact.beams[i]).name);
+    }
+    line(fmt::format("  beams: {}]", beams));
+  }
+  const auto length = [&line](std::string_view key, double value) {
+    line(fmt::format("  {}: {}  # mm", key, value > 0.0 ? format_number(value) : std::string("auto")));
+  };
+  length("proximity_distance", contact.proximity_distance);
+  length("separation_distance", contact.separation_distance);
+  length("test_point_spacing", contact.test_point_spacing);
+  length("matching_length", contact.matching_length);
+  length("element_spacing", contact.element_spacing);
   return out;
 }
 

@@ -112,6 +112,19 @@ struct OutputSettings {
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
 };
 
+/// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
+/// "auto": derived from the radii and element lengths when the simulation starts.
+struct ContactSettings {
+  bool enabled = false;      ///< true when the file has a contact section, unless contact.enabled: false
+  bool self_contact = true;  ///< also between separate parts of one beam
+  std::vector<int> beams;    ///< indices into Scenario::beams that take part; empty: all beams
+  double proximity_distance = 0.0;   ///< delta_prox [mm], auto if <= 0
+  double separation_distance = 0.0;  ///< delta_separ [mm], auto if <= 0
+  double test_point_spacing = 0.0;   ///< h_dist [mm], auto if <= 0
+  double matching_length = 0.0;      ///< l_p [mm], auto if <= 0
+  double element_spacing = 0.0;      ///< h_c [mm], auto if <= 0
+};
+
 struct Scenario {
   std::string path;  ///< the file it was read from
   std::vector<Material> materials;
@@ -120,6 +133,7 @@ struct Scenario {
   std::vector<StageSpec> stages;
   SolverSettings solver;
   OutputSettings output;
+  ContactSettings contact;
 };
 
 /// Reads and validates a scenario file. Throws ScenarioError with a one-line message on bad input.

@@ -2,6 +2,7 @@
 
 #include <chrono>
 #include <numbers>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -81,6 +82,17 @@ void check_activation(const scenario::Scenario& s, const model::Model& model) {
   }
 }
 
+contact::DetectionParameters resolve_detection(const scenario::Scenario& s, const model::Model& model) {
+  const scenario::ContactSettings& c = s.contact;
+  contact::DetectionParameters given{c.proximity_distance, c.separation_distance, c.test_point_spacing,
+                                     c.matching_length,    c.element_spacing,     c.self_contact};
+  try {
+    return contact::resolve_parameters(given, model, c.beams);
+  } catch (const std::invalid_argument& e) {
+    throw scenario::ScenarioError(fmt::format("{}: {}", s.path, e.what()));
+  }
+}
+
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind) {
   return kind == scenario::LinearSolverKind::umfpack ? solver::LinearSolverKind::umfpack
                                                      : solver::LinearSolverKind::cholmod;
@@ -99,6 +111,18 @@ Simulation::Simulation(scenario::Scenario scenario)
   problem_ = std::make_unique<EquilibriumProblem>(
       model_, conditions_,
       Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
+  if (scenario_.contact.enabled) {
+    contact_enabled_ = true;
+    detection_ = resolve_detection(scenario_, model_);
+    detect_contact();
+  }
+}
+
+void Simulation::detect_contact() {
+  if (!contact_enabled_) return;
+  const auto start = std::chrono::steady_clock::now();
+  contact_ = contact::detect(model_, problem_->committed_state(), detection_, scenario_.contact.beams);
+  detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
 Simulation::~Simulation() = default;
@@ -174,6 +198,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
           record.residual = r.newton.residual;
           record.increment = r.newton.increment;
           summary.newton_iterations += r.newton.iterations;
+          detect_contact();
+          record.zones = static_cast<int>(contact_.zones.size());
+          record.contact_elements = static_cast<int>(contact_.elements.size());
           for (int c = 0; c < conditions_.size(); ++c)
             record.sections.push_back(
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
@@ -186,6 +213,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   }
   summary.converged = summary.failure.empty();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  summary.detection_seconds = detection_seconds_;
   for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;
 }

@@ -1,6 +1,7 @@
 #pragma once
 /// The global algorithm of a quasi-static run [Durville 2012, Sect. 6]: the loading program's stages, each
-/// divided into load steps, each solved by Newton-Raphson. (Contact loops come with the contact issues.)
+/// divided into load steps, each solved by Newton-Raphson. Contact is detected in every converged state (its
+/// forces and loops come with the contact mechanics).
 
 #include <memory>
 #include <string>
@@ -8,6 +9,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/scenario/scenario.hpp"
@@ -26,6 +28,8 @@ struct StepRecord {
   double residual = 0.0;                        ///< |R| over the free unknowns at convergence [N]
   double increment = 0.0;                       ///< scaled size of the last Newton increment [-]
   std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)
+  int zones = 0;                                ///< proximity zones detected in the converged state
+  int contact_elements = 0;                     ///< contact elements along them
 };
 
 struct RunSummary {
@@ -33,7 +37,8 @@ struct RunSummary {
   int steps = 0;
   int newton_iterations = 0;
   double wall_seconds = 0.0;
-  std::string failure;  ///< why the run stopped early
+  double detection_seconds = 0.0;  ///< of which spent in contact detection
+  std::string failure;             ///< why the run stopped early
 };
 
 class Simulation;
@@ -59,6 +64,10 @@ class Simulation {
   const loading::Conditions& conditions() const { return conditions_; }
   /// The last converged state: nine values (r, g1, g2) per node.
   const Eigen::VectorXd& state() const;
+  /// The contact geometry detected in the last converged state; null when the scenario has no contact.
+  const contact::ContactGeometry* contact() const { return contact_enabled_ ? &contact_ : nullptr; }
+  /// The detection parameters, defaults resolved (meaningful when contact() is not null).
+  const contact::DetectionParameters& detection_parameters() const { return detection_; }
   /// Load time of the last converged state [s].
   double time() const { return time_; }
   /// Load time at the end of each stage [s].
@@ -73,6 +82,13 @@ class Simulation {
   loading::Conditions conditions_;
   std::unique_ptr<EquilibriumProblem> problem_;
   double time_ = 0.0;
+  bool contact_enabled_ = false;
+  contact::DetectionParameters detection_;
+  contact::ContactGeometry contact_;
+  double detection_seconds_ = 0.0;
+
+  /// Detects contact in the committed state (when the scenario has contact).
+  void detect_contact();
 };
 
 }  // namespace nodus::simulation

@@ -1,0 +1,115 @@
+#include "nodus/output/contact_table.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <iterator>
+#include <stdexcept>
+
+#include <fmt/format.h>
+
+#include "nodus/output/atomic_file.hpp"
+#include "nodus/output/csv.hpp"
+
+namespace nodus::output {
+namespace {
+
+/// The CSV field of beam `index`, or std::invalid_argument.
+std::string beam_field(const std::vector<std::string>& beam_names, int index, std::string_view context) {
+  if (index < 0 || index >= static_cast<int>(beam_names.size()))
+    throw std::invalid_argument(
+        fmt::format("{}: beam index {}, the model has {} beams", context, index, beam_names.size()));
+  return csv_field(beam_names[static_cast<std::size_t>(index)]);
+}
+
+}  // namespace
+
+void check_contact_geometry(const contact::ContactGeometry& geometry, std::string_view context) {
+  const auto num_elements = static_cast<std::int64_t>(geometry.elements.size());
+  for (std::size_t z = 0; z < geometry.zones.size(); ++z) {
+    const contact::ProximityZone& zone = geometry.zones[z];
+    if (zone.num_elements < 0 ||
+        (zone.num_elements > 0 &&
+         (zone.first_element < 0 || std::int64_t{zone.first_element} + zone.num_elements > num_elements)))
+      throw std::invalid_argument(
+          fmt::format("{}: zone {} lists {} elements from element {}, the geometry has {}", context, z,
+                      zone.num_elements, zone.first_element, num_elements));
+  }
+  for (std::size_t e = 0; e < geometry.elements.size(); ++e) {
+    const int zone = geometry.elements[e].zone;
+    if (zone < 0 || zone >= static_cast<int>(geometry.zones.size()))
+      throw std::invalid_argument(fmt::format("{}: element {} belongs to zone {}, the geometry has {} zones",
+                                              context, e, zone, geometry.zones.size()));
+  }
+}
+
+std::optional<double> smallest_gap(const contact::ContactGeometry& geometry,
+                                   const contact::ProximityZone& zone) {
+  if (zone.num_elements <= 0) return std::nullopt;
+  const auto first = geometry.elements.begin() + zone.first_element;
+  return std::min_element(
+             first, first + zone.num_elements,
+             [](const contact::ContactElement& p, const contact::ContactElement& q) { return p.gap < q.gap; })
+      ->gap;
+}
+
+std::vector<std::string> beam_names(const model::Model& model) {
+  std::vector<std::string> names;
+  names.reserve(model.beams().size());
+  for (const beam::Beam& b : model.beams()) names.push_back(b.name());
+  return names;
+}
+
+std::string contact_final_csv(const contact::ContactGeometry& geometry,
+                              const std::vector<std::string>& beam_names) {
+  constexpr std::string_view kContext = "contact_final.csv";
+  check_contact_geometry(geometry, kContext);
+  fmt::memory_buffer out;
+  fmt::format_to(
+      std::back_inserter(out),
+      "zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,x_j,y_j,z_j,"
+      "nx,ny,nz,gap\n");
+  for (const contact::ContactElement& e : geometry.elements) {
+    const contact::ProximityZone& zone = geometry.zones[static_cast<std::size_t>(e.zone)];
+    fmt::format_to(std::back_inserter(out), "{},{},{},{:.10g},{:.10g},{:.10g}", e.zone,
+                   beam_field(beam_names, zone.beam_i, kContext),
+                   beam_field(beam_names, zone.beam_j, kContext), e.zeta, e.particle_i.abscissa,
+                   e.particle_j.abscissa);
+    for (const auto& v : {e.particle_i.transverse, e.particle_j.transverse})
+      fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g}", v.x(), v.y());
+    for (const contact::Vec3& v : {e.position_i, e.position_j, e.normal})
+      fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g}", v.x(), v.y(), v.z());
+    fmt::format_to(std::back_inserter(out), ",{:.10g}\n", e.gap);
+  }
+  return fmt::to_string(out);
+}
+
+std::string zones_final_csv(const contact::ContactGeometry& geometry,
+                            const std::vector<std::string>& beam_names) {
+  constexpr std::string_view kContext = "zones_final.csv";
+  check_contact_geometry(geometry, kContext);
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "zone,beam_i,beam_j,a,b,c,d,contact_elements,min_gap\n");
+  for (std::size_t z = 0; z < geometry.zones.size(); ++z) {
+    const contact::ProximityZone& zone = geometry.zones[z];
+    fmt::format_to(std::back_inserter(out), "{},{},{},{:.10g},{:.10g},{:.10g},{:.10g},{},", z,
+                   beam_field(beam_names, zone.beam_i, kContext),
+                   beam_field(beam_names, zone.beam_j, kContext), zone.a, zone.b, zone.c, zone.d,
+                   zone.num_elements);
+    if (const std::optional<double> gap = smallest_gap(geometry, zone))
+      fmt::format_to(std::back_inserter(out), "{:.10g}", *gap);
+    out.push_back('\n');
+  }
+  return fmt::to_string(out);
+}
+
+void write_contact_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
+                         const std::vector<std::string>& beam_names) {
+  write_file_atomically(path, contact_final_csv(geometry, beam_names));
+}
+
+void write_zones_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
+                       const std::vector<std::string>& beam_names) {
+  write_file_atomically(path, zones_final_csv(geometry, beam_names));
+}
+
+}  // namespace nodus::output

@@ -1,0 +1,442 @@
+// Contact detection against exact geometric answers [Durville 2012, Eq. 24-48]: crossings, parallel and
+// antiparallel beams, a double helix, self-contact in a loop and a hairpin, the proximity limit, and the
+// invariances under renumbering and rigid motion.
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include <gtest/gtest.h>
+
+#include "contact_test_support.hpp"
+
+namespace nodus::contact {
+namespace {
+
+using testing::beam_definition;
+using testing::constant;
+using testing::line;
+using testing::place_beam;
+
+constexpr double kPi = std::numbers::pi;
+
+/// The geometry of a model whose beams are placed by `place`.
+struct Assembly {
+  model::Model model;
+  Eigen::VectorXd x;
+};
+
+/// The resolved parameters for an assembly whose largest radius is 0.1 mm: delta_prox 0.3 mm,
+/// h_dist = sqrt(0.3^2 - 0.2^2) mm, l_p = 2 h_dist, delta_separ = 1.2 mm.
+DetectionParameters defaults(const model::Model& model) {
+  return resolve_parameters({}, model, {});
+}
+
+TEST(DetectionParameters, DefaultsFollowFromTheLargestRadius) {
+  model::Model m;
+  m.add_beam(beam_definition(4.0, 0.1, 80));
+  m.add_beam(beam_definition(4.0, 0.08, 40));
+  const DetectionParameters p = defaults(m);
+  EXPECT_DOUBLE_EQ(p.proximity_distance, 0.3);
+  EXPECT_DOUBLE_EQ(p.test_point_spacing, std::sqrt(0.3 * 0.3 - 0.2 * 0.2));
+  EXPECT_DOUBLE_EQ(p.matching_length, 2.0 * p.test_point_spacing);
+  EXPECT_DOUBLE_EQ(p.separation_distance, 1.2);
+  EXPECT_EQ(p.element_spacing, 0.0);  // per zone
+  // Only the listed beams count.
+  EXPECT_DOUBLE_EQ(resolve_parameters({}, m, {1}).proximity_distance, 0.24);
+  // Set values are kept; inconsistent ones are refused.
+  DetectionParameters given;
+  given.proximity_distance = 0.5;
+  EXPECT_DOUBLE_EQ(resolve_parameters(given, m, {}).separation_distance, 2.0);
+  given.separation_distance = 0.4;
+  EXPECT_THROW(resolve_parameters(given, m, {}), std::invalid_argument);
+  given.self_contact = false;
+  EXPECT_NO_THROW(resolve_parameters(given, m, {}));
+  DetectionParameters short_intervals;
+  short_intervals.test_point_spacing = 0.2;
+  short_intervals.matching_length = 0.1;
+  EXPECT_THROW(resolve_parameters(short_intervals, m, {}), std::invalid_argument);
+}
+
+/// Two straight beams of length 4 mm crossing at their middles at `angle`, axis distance D: beam I along x
+/// (R 0.1, 80 elements), beam J at height D along (cos angle, sin angle, 0) (R 0.08, 80 elements).
+Assembly crossing(double angle, double distance) {
+  Assembly a;
+  a.model.add_beam(beam_definition(4.0, 0.1, 80));
+  a.model.add_beam(beam_definition(4.0, 0.08, 80));
+  a.x = a.model.reference();
+  const Vec3 dir(std::cos(angle), std::sin(angle), 0.0);
+  place_beam(a.model, a.x, 0, line(Vec3(-2.0, 0.0, 0.0), Vec3::UnitX()), constant(Vec3::UnitZ()));
+  place_beam(a.model, a.x, 1, line(Vec3(0.0, 0.0, distance) - 2.0 * dir, dir), constant(Vec3::UnitZ()));
+  return a;
+}
+
+/// One zone, centred on the crossing (abscissa 2 on both beams), of half-length X + l_p / 2 on both beams
+/// with X the largest test point offset within delta_prox: X <= sqrt(delta^2 - D^2) / sin(angle) < X +
+/// h_dist.
+void expect_crossing_zone(const ContactGeometry& g, const DetectionParameters& p, double angle,
+                          double distance) {
+  ASSERT_EQ(g.zones.size(), 1u);
+  const ProximityZone& z = g.zones[0];
+  EXPECT_EQ(z.beam_i, 0);
+  EXPECT_EQ(z.beam_j, 1);
+  const double reach =
+      std::sqrt(p.proximity_distance * p.proximity_distance - distance * distance) / std::sin(angle);
+  for (const auto& [lo, hi] : {std::pair{z.a, z.b}, std::pair{std::min(z.c, z.d), std::max(z.c, z.d)}}) {
+    EXPECT_NEAR(0.5 * (lo + hi), 2.0, 1e-12);
+    const double half = 0.5 * (hi - lo) - 0.5 * p.matching_length;
+    EXPECT_LE(half, reach + 1e-12);
+    EXPECT_GT(half, reach - p.test_point_spacing);
+  }
+  EXPECT_LT(z.c, z.d);  // acute crossing: the parts run the same way
+}
+
+TEST(Detection, CrossingAtRightAngles) {
+  const double D = 0.17;  // axis distance; R_I + R_J = 0.18: the surfaces overlap by 0.01 mm
+  const double r_i = 0.1, r_j = 0.08;
+  const Assembly a = crossing(kPi / 2.0, D);
+  const DetectionParameters p = defaults(a.model);
+  const ContactGeometry g = detect(a.model, a.x, {});
+  expect_crossing_zone(g, p, kPi / 2.0, D);
+  ASSERT_GE(g.elements.size(), 5u);
+
+  // At every contact element, with u_I, u_J the particles' offsets from the crossing along their beams, the
+  // particles lie where the direction between the section centres, projected on each section, meets its
+  // border, the normal is e_z (the tangents' cross product), and the gap is
+  // D - R_I D / hypot(u_J, D) - R_J D / hypot(u_I, D).
+  for (const ContactElement& e : g.elements) {
+    const double u_i = e.particle_i.abscissa - 2.0, u_j = e.particle_j.abscissa - 2.0;
+    const double rho_i = std::hypot(u_i, D), rho_j = std::hypot(u_j, D);
+    EXPECT_NEAR((e.normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((e.position_i - Vec3(u_i, r_i * u_j / rho_j, r_i * D / rho_j)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR((e.position_j - Vec3(r_j * u_i / rho_i, u_j, D - r_j * D / rho_i)).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(e.gap, D - r_i * D / rho_j - r_j * D / rho_i, 1e-12);
+    EXPECT_NEAR(e.particle_i.transverse.norm(), r_i, 1e-12);
+    EXPECT_NEAR(e.particle_j.transverse.norm(), r_j, 1e-12);
+  }
+  // The middle of the intermediate geometry is the crossing, where the gap is D - (R_I + R_J).
+  ContactElement middle;
+  ASSERT_TRUE(contact_element_at(a.model, a.x, g.zones[0], 0.5, middle));
+  EXPECT_NEAR(middle.particle_i.abscissa, 2.0, 1e-12);
+  EXPECT_NEAR(middle.particle_j.abscissa, 2.0, 1e-12);
+  EXPECT_NEAR(middle.gap, D - (r_i + r_j), 1e-12);
+}
+
+TEST(Detection, CrossingAtTenDegrees) {
+  const double D = 0.2, angle = 10.0 * kPi / 180.0;
+  const Assembly a = crossing(angle, D);
+  const DetectionParameters p = defaults(a.model);
+  const ContactGeometry g = detect(a.model, a.x, {});
+  expect_crossing_zone(g, p, angle, D);
+  ContactElement middle;
+  ASSERT_TRUE(contact_element_at(a.model, a.x, g.zones[0], 0.5, middle));
+  EXPECT_NEAR(middle.particle_i.abscissa, 2.0, 1e-12);
+  EXPECT_NEAR(middle.particle_j.abscissa, 2.0, 1e-12);
+  EXPECT_NEAR((middle.normal - Vec3::UnitZ()).norm(), 0.0, 1e-12);
+  EXPECT_NEAR(middle.gap, D - 0.18, 1e-12);
+  // The crossing is where the axes come closest: no gap along the zone is smaller.
+  for (const ContactElement& e : g.elements) EXPECT_GE(e.gap, D - 0.18 - 1e-12);
+  // 10 degrees lies between the two regimes of the normal (5 and 15 degrees): a blend.
+  EXPECT_GT(g.elements[g.elements.size() / 2].parallel_weight, 0.0);
+  EXPECT_LT(g.elements[g.elements.size() / 2].parallel_weight, 1.0);
+}
+
+/// Beam I along x from the origin; beam J along x at distance D in y, from x = 1 (parallel) or back from
+/// x = 5 (antiparallel): the beams overlap over x in [1, 4].
+Assembly side_by_side(bool antiparallel, double distance) {
+  Assembly a;
+  a.model.add_beam(beam_definition(4.0, 0.1, 80));
+  a.model.add_beam(beam_definition(4.0, 0.08, 60));
+  a.x = a.model.reference();
+  place_beam(a.model, a.x, 0, line(Vec3::Zero(), Vec3::UnitX()), constant(Vec3::UnitZ()));
+  if (antiparallel)
+    place_beam(a.model, a.x, 1, line(Vec3(5.0, distance, 0.0), -Vec3::UnitX()), constant(Vec3::UnitZ()));
+  else
+    place_beam(a.model, a.x, 1, line(Vec3(1.0, distance, 0.0), Vec3::UnitX()), constant(Vec3::UnitZ()));
+  return a;
+}
+
+void expect_line_contact(bool antiparallel) {
+  const double D = 0.19;
+  const Assembly a = side_by_side(antiparallel, D);
+  const ContactGeometry g = detect(a.model, a.x, {});
+  ASSERT_EQ(g.zones.size(), 1u);
+  const ProximityZone& z = g.zones[0];
+  // The zone covers the overlap: x in [1, 4] on I, and s in [0, 3] (parallel) or [1, 4] (antiparallel) on J.
+  EXPECT_LE(z.a, 1.0);
+  EXPECT_DOUBLE_EQ(z.b, 4.0);
+  if (antiparallel) {
+    EXPECT_GT(z.c, z.d);
+    EXPECT_GE(z.c, 4.0);
+    EXPECT_LE(z.d, 1.0);
+  } else {
+    EXPECT_DOUBLE_EQ(z.c, 0.0);
+    EXPECT_GE(z.d, 3.0);
+  }
+  // Elements at spacing h_c = 0.5 min(4/80, 4/60) = 0.025 along the shorter interval, those whose plane cuts
+  // both beams kept: at least the overlap's worth.
+  EXPECT_GE(static_cast<double>(g.elements.size()), 3.0 / 0.025);
+  for (const ContactElement& e : g.elements) {
+    EXPECT_NEAR((e.normal - Vec3::UnitY()).norm(), 0.0, 1e-12);
+    EXPECT_NEAR(e.gap, D - 0.18, 1e-12);
+    EXPECT_NEAR(e.position_i.x(), e.position_j.x(), 1e-12);  // the section plane is normal to both axes
+    EXPECT_DOUBLE_EQ(e.parallel_weight, 1.0);
+  }
+}
+
+TEST(Detection, ParallelBeams) {
+  expect_line_contact(false);
+}
+TEST(Detection, AntiparallelBeams) {
+  expect_line_contact(true);
+}
+
+/// Two strands of a double helix of radius rho about the z axis, helix angle alpha, half a turn apart.
+Assembly double_helix(double rho, double alpha, double r_i, double r_j, int elements_i, int elements_j,
+                      bool swap = false) {
+  Assembly a;
+  const double length = 4.0;
+  const auto strand = [=](double phase) {
+    return [=](double s) -> Vec3 {
+      const double phi = phase + s * std::sin(alpha) / rho;
+      return Vec3(rho * std::cos(phi), rho * std::sin(phi), s * std::cos(alpha));
+    };
+  };
+  const auto radial = [=](double phase) {
+    return [=](double s) -> Vec3 {
+      const double phi = phase + s * std::sin(alpha) / rho;
+      return Vec3(std::cos(phi), std::sin(phi), 0.0);
+    };
+  };
+  const int first =
+      a.model.add_beam(beam_definition(length, swap ? r_j : r_i, swap ? elements_j : elements_i));
+  const int second =
+      a.model.add_beam(beam_definition(length, swap ? r_i : r_j, swap ? elements_i : elements_j));
+  a.x = a.model.reference();
+  place_beam(a.model, a.x, swap ? second : first, strand(0.0), radial(0.0));
+  place_beam(a.model, a.x, swap ? first : second, strand(kPi), radial(kPi));
+  return a;
+}
+
+class DoubleHelix : public ::testing::TestWithParam<double> {};
+
+TEST_P(DoubleHelix, HasAConstantGap) {
+  // Helix angle 20 degrees: the strands cross at 40 degrees, the normal is the tangents' cross product;
+  // 2 degrees: 4 degrees between strands, the double cross product (Eq. 44).
+  const double rho = 0.1, alpha = GetParam() * kPi / 180.0, radius = 0.095;
+  const Assembly a = double_helix(rho, alpha, radius, radius, 160, 160);
+  const ContactGeometry g = detect(a.model, a.x, {});
+  ASSERT_EQ(g.zones.size(), 1u);
+  EXPECT_LT(g.zones[0].a, 0.1);
+  EXPECT_GT(g.zones[0].b, 3.9);
+  ASSERT_GT(g.elements.size(), 100u);
+  // Exact gap 2 rho - 2 R. Tolerances: the quadratic interpolation of the helix (nodes h / 2 apart), whose
+  // error bounds are |r'''| / 6 * 2 / (3 sqrt 3) * (h / 2)^3 = 5e-7 mm on positions and |r'''| (h / 2)^2 / 3
+  // = 2e-4 on tangents, with |r'''| = sin^3(alpha) / rho^2 <= 4 mm^-2 and h = 0.025 mm.
+  double worst_gap = 0.0, worst_normal = 0.0;
+  for (const ContactElement& e : g.elements) {
+    worst_gap = std::max(worst_gap, std::abs(e.gap - (2.0 * rho - 2.0 * radius)));
+    // The normal is radial, from strand I (at phi = s sin(alpha) / rho) to strand J through the axis.
+    const double phi = e.particle_i.abscissa * std::sin(alpha) / rho;
+    worst_normal = std::max(worst_normal, (e.normal + Vec3(std::cos(phi), std::sin(phi), 0.0)).norm());
+  }
+  EXPECT_LT(worst_gap, 5e-7);
+  EXPECT_LT(worst_normal, 2e-4);
+  EXPECT_EQ(g.elements.front().parallel_weight, GetParam() < 5.0 ? 1.0 : 0.0);
+  std::printf(
+      "double helix, helix angle %g deg: %zu contact elements, max |gap - (2 rho - 2 R)| = %.2e mm, "
+      "max normal error %.2e\n",
+      GetParam(), g.elements.size(), worst_gap, worst_normal);
+}
+
+INSTANTIATE_TEST_SUITE_P(Detection, DoubleHelix, ::testing::Values(2.0, 20.0));
+
+TEST(Detection, NothingBeyondTheProximityDistance) {
+  model::Model m;
+  m.add_beam(beam_definition(4.0, 0.1, 80));
+  const double delta = defaults(m).proximity_distance;
+  for (const auto& [distance, zones] : {std::pair{delta + 0.01, 0u}, std::pair{delta - 0.01, 1u}}) {
+    const Assembly parallel = side_by_side(false, distance);
+    EXPECT_EQ(detect(parallel.model, parallel.x, {}).zones.size(), zones) << "parallel at " << distance;
+    const Assembly crossed = crossing(kPi / 3.0, distance);
+    EXPECT_EQ(detect(crossed.model, crossed.x, {}).zones.size(), zones) << "crossing at " << distance;
+  }
+}
+
+/// A prolate cycloid x = t - 2 sin t, y = -2 cos t, whose loop crosses itself at t = +-t* (t* = 2 sin t*),
+/// lifted by z = (D / 2) sin(pi t / (2 t*)) so that the two parts pass each other at axis distance D there,
+/// with horizontal tangents. t spans [-T, T]; T puts t* on a node (node 204 of 240).
+struct Loop {
+  Assembly assembly;
+  double crossing_later = 0.0, crossing_earlier = 0.0;  // abscissas of the crossing on the two parts
+};
+
+Loop alpha_loop(double distance) {
+  double t_star = 1.9;
+  for (int i = 0; i < 60; ++i) t_star -= (t_star - 2.0 * std::sin(t_star)) / (1.0 - 2.0 * std::cos(t_star));
+  const int elements = 120;
+  const double length = 12.0, big_t = t_star * elements / (204.0 - elements);
+  Loop loop;
+  Assembly& a = loop.assembly;
+  a.model.add_beam(beam_definition(length, 0.1, elements));
+  a.x = a.model.reference();
+  const auto curve = [=](double s) -> Vec3 {
+    const double t = -big_t + 2.0 * big_t * s / length;
+    return Vec3(t - 2.0 * std::sin(t), -2.0 * std::cos(t), 0.5 * distance * std::sin(0.5 * kPi * t / t_star));
+  };
+  place_beam(a.model, a.x, 0, curve, constant(Vec3::UnitZ()));
+  loop.crossing_later = length * (t_star + big_t) / (2.0 * big_t);
+  loop.crossing_earlier = length - loop.crossing_later;
+  return loop;
+}
+
+TEST(Detection, SelfContactWhereALoopCrossesItself) {
+  const double D = 0.21;
+  const Loop loop = alpha_loop(D);
+  const Assembly& a = loop.assembly;
+  const ContactGeometry g = detect(a.model, a.x, {});
+  ASSERT_EQ(g.zones.size(), 1u);  // nothing along the loop or the tails
+  const ProximityZone& z = g.zones[0];
+  EXPECT_EQ(z.beam_i, 0);
+  EXPECT_EQ(z.beam_j, 0);
+  EXPECT_LT(z.a, loop.crossing_later);
+  EXPECT_GT(z.b, loop.crossing_later);
+  EXPECT_GT(z.c, loop.crossing_earlier);  // the parts cross at an obtuse angle: antiparallel
+  EXPECT_LT(z.d, loop.crossing_earlier);
+  EXPECT_NEAR(z.a + z.c, a.model.beam(0).length(), 1e-9);  // the loop is symmetric: so is the zone
+  EXPECT_NEAR(z.b + z.d, a.model.beam(0).length(), 1e-9);
+  // The element through the crossing: the later part's particle on top, the gap D - 2R (exact: the crossing
+  // lies on a node, the tangents are horizontal there up to O(h^2), which tilts the normal by O(h^2)).
+  ContactElement e;
+  ASSERT_TRUE(contact_element_at(a.model, a.x, z, (loop.crossing_later - z.a) / (z.b - z.a), e));
+  EXPECT_NEAR(e.particle_i.abscissa, loop.crossing_later, 1e-9);
+  EXPECT_NEAR(e.particle_j.abscissa, loop.crossing_earlier, 1e-9);
+  EXPECT_NEAR(e.gap, D - 0.2, 1e-8);
+  EXPECT_LT(e.normal.z(), -1.0 + 1e-6);  // from the later (upper) part down to the earlier one
+  for (const ContactElement& c : g.elements) EXPECT_GE(c.gap, D - 0.2 - 1e-8);
+}
+
+TEST(Detection, HairpinPairsOnlyPartsFartherApartThanTheSeparationDistance) {
+  // A beam folded back on itself: straight leg along -x from (3, 0, 0) to the origin, half circle of radius
+  // rho, straight leg back along +x at y = 2 rho. Points of the two legs at distance e from the bend are
+  // pi rho + 2 e apart along the beam: only those with pi rho + 2 e >= delta_separ may be paired.
+  const double leg = 3.0, rho = 0.12, radius = 0.1;
+  const double bend = kPi * rho, length = 2.0 * leg + bend;
+  model::Model m;
+  m.add_beam(beam_definition(length, radius, 200));
+  Eigen::VectorXd x = m.reference();
+  const auto curve = [=](double s) -> Vec3 {
+    if (s <= leg) return Vec3(leg - s, 0.0, 0.0);
+    if (s <= leg + bend) {
+      const double phi = (s - leg) / rho;
+      return Vec3(-rho * std::sin(phi), rho - rho * std::cos(phi), 0.0);
+    }
+    return Vec3(s - leg - bend, 2.0 * rho, 0.0);
+  };
+  place_beam(m, x, 0, curve, constant(Vec3::UnitZ()));
+  const DetectionParameters p = defaults(m);
+  const ContactGeometry g = detect(m, x, {});
+  ASSERT_EQ(g.zones.size(), 1u);
+  const ProximityZone& z = g.zones[0];
+  EXPECT_GT(z.c, z.d);  // the legs run antiparallel
+  EXPECT_GE(z.a, leg + bend);
+  double closest = length;
+  for (const ContactElement& e : g.elements) {
+    const double separation = e.particle_i.abscissa - e.particle_j.abscissa;
+    closest = std::min(closest, separation);
+    // The matched test points are delta_separ apart at least; the zone's ends reach l_p / 2 beyond them.
+    EXPECT_GE(separation, p.separation_distance - p.matching_length);
+    // On the straight legs (one element clear of the bend), the gap is exact.
+    const double h = m.beam(0).element_length();
+    if (e.particle_j.abscissa < leg - h && e.particle_i.abscissa > leg + bend + h) {
+      EXPECT_NEAR(e.gap, 2.0 * rho - 2.0 * radius, 1e-12);
+      EXPECT_NEAR((e.normal + Vec3::UnitY()).norm(), 0.0, 1e-12);  // from the later leg (I) down to J
+    }
+  }
+  // And the zone does reach the parts just beyond delta_separ.
+  EXPECT_LT(closest, p.separation_distance + p.test_point_spacing);
+  // Without self-contact, nothing.
+  DetectionParameters no_self;
+  no_self.self_contact = false;
+  EXPECT_TRUE(detect(m, x, no_self).zones.empty());
+}
+
+/// Elements of `a` and `b` match with the particles of I and J exchanged, opposite normals, same gaps.
+void expect_swapped(const ContactGeometry& a, const ContactGeometry& b) {
+  ASSERT_EQ(a.zones.size(), b.zones.size());
+  ASSERT_EQ(a.elements.size(), b.elements.size());
+  for (const ContactElement& e : a.elements) {
+    const auto it = std::find_if(b.elements.begin(), b.elements.end(), [&](const ContactElement& f) {
+      return std::abs(f.particle_j.abscissa - e.particle_i.abscissa) < 1e-9 &&
+             std::abs(f.particle_i.abscissa - e.particle_j.abscissa) < 1e-9;
+    });
+    ASSERT_NE(it, b.elements.end()) << "no match for the element at zeta " << e.zeta;
+    EXPECT_NEAR((it->particle_j.transverse - e.particle_i.transverse).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((it->particle_i.transverse - e.particle_j.transverse).norm(), 0.0, 1e-9);
+    EXPECT_NEAR((it->normal + e.normal).norm(), 0.0, 1e-9);
+    EXPECT_NEAR(it->gap, e.gap, 1e-12);
+  }
+}
+
+TEST(DetectionInvariance, RenumberingTheBeamsSwapsTheParticlesAndFlipsTheNormals) {
+  // A double helix of unequal strands.
+  const double rho = 0.1, alpha = 25.0 * kPi / 180.0;
+  const Assembly helix = double_helix(rho, alpha, 0.095, 0.09, 160, 120);
+  const Assembly helix_swapped = double_helix(rho, alpha, 0.095, 0.09, 160, 120, true);
+  const ContactGeometry h1 = detect(helix.model, helix.x, {});
+  ASSERT_FALSE(h1.elements.empty());
+  expect_swapped(h1, detect(helix_swapped.model, helix_swapped.x, {}));
+
+  // Two bent beams crossing at 70 degrees, curving away from each other: A in the xy-plane through the
+  // origin along x, B through (0, 0, 0.16) bending upwards.
+  const Vec3 t_b(std::cos(70.0 * kPi / 180.0), std::sin(70.0 * kPi / 180.0), 0.0);
+  const auto curve_a = [](double s) -> Vec3 {
+    const double phi = (s - 1.5) / 3.0;
+    return Vec3(3.0 * std::sin(phi), 3.0 * std::cos(phi) - 3.0, 0.0);
+  };
+  const auto curve_b = [&](double s) -> Vec3 {
+    const double psi = (s - 1.4) / 2.0;
+    return Vec3(0.0, 0.0, 0.16) + 2.0 * (std::sin(psi) * t_b + (1.0 - std::cos(psi)) * Vec3::UnitZ());
+  };
+  const auto build = [&](bool swap) {
+    Assembly a;
+    a.model.add_beam(beam_definition(3.0, swap ? 0.07 : 0.1, swap ? 70 : 90));
+    a.model.add_beam(beam_definition(3.0, swap ? 0.1 : 0.07, swap ? 90 : 70));
+    a.x = a.model.reference();
+    place_beam(a.model, a.x, swap ? 1 : 0, curve_a, constant(Vec3::UnitZ()));
+    place_beam(a.model, a.x, swap ? 0 : 1, curve_b, constant(Vec3::UnitY()));
+    return a;
+  };
+  const Assembly crossed = build(false), crossed_swapped = build(true);
+  const ContactGeometry c1 = detect(crossed.model, crossed.x, {});
+  ASSERT_EQ(c1.zones.size(), 1u);
+  expect_swapped(c1, detect(crossed_swapped.model, crossed_swapped.x, {}));
+}
+
+TEST(DetectionInvariance, ARigidMotionMovesTheContactElementsAndKeepsTheGaps) {
+  const Eigen::Matrix3d q =
+      Eigen::AngleAxisd(128.0 * kPi / 180.0, Vec3(1.0, -2.0, 0.5).normalized()).matrix();
+  const Vec3 shift(3.0, -1.0, 7.5);
+  const Loop loop = alpha_loop(0.19);
+  const Assembly helix = double_helix(0.1, 0.3, 0.095, 0.09, 160, 120);
+  for (const Assembly* a : {&loop.assembly, &helix}) {
+    const ContactGeometry g = detect(a->model, a->x, {});
+    const ContactGeometry h = detect(a->model, testing::moved(a->x, q, shift), {});
+    ASSERT_FALSE(g.elements.empty());
+    ASSERT_EQ(g.zones.size(), h.zones.size());
+    ASSERT_EQ(g.elements.size(), h.elements.size());
+    for (std::size_t k = 0; k < g.elements.size(); ++k) {
+      const ContactElement &e = g.elements[k], &f = h.elements[k];
+      EXPECT_NEAR(f.particle_i.abscissa, e.particle_i.abscissa, 1e-9);
+      EXPECT_NEAR(f.particle_j.abscissa, e.particle_j.abscissa, 1e-9);
+      EXPECT_NEAR((f.particle_i.transverse - e.particle_i.transverse).norm(), 0.0, 1e-9);
+      EXPECT_NEAR((f.position_i - (q * e.position_i + shift)).norm(), 0.0, 1e-9);
+      EXPECT_NEAR((f.position_j - (q * e.position_j + shift)).norm(), 0.0, 1e-9);
+      EXPECT_NEAR((f.normal - q * e.normal).norm(), 0.0, 1e-9);
+      EXPECT_NEAR(f.gap, e.gap, 1e-12);
+    }
+  }
+}
+
+}  // namespace
+}  // namespace nodus::contact

@@ -1,0 +1,313 @@
+// Tests of the `contact` section of a scenario file: defaults, every key, the word auto, beams by name, and
+// the exact one-line message "FILE:LINE: KEY: expected ..., got ..." of each kind of bad input.
+
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "nodus/scenario/scenario.hpp"
+
+namespace nodus::scenario {
+namespace {
+
+/// Three beams and no contact section; the tests append one, its first line is line 25.
+const std::string kBase = R"(materials:
+  - name: nylon
+    young_modulus: 4000
+    poisson_ratio: 0.3
+beams:
+  - name: rod
+    material: nylon
+    radius: 0.1
+    length: 20
+    elements: 10
+  - name: strand
+    material: nylon
+    radius: 0.2
+    length: 10
+    elements: 5
+    start: [0, 1, 0]
+  - name: wire
+    material: nylon
+    radius: 0.05
+    length: 5
+    elements: 2
+stages:
+  - name: hold
+    steps: 1
+)";
+
+Scenario parse(const std::string& contact_section) {
+  return parse_scenario(kBase + contact_section, "knot.yaml");
+}
+
+/// The message of the ScenarioError that parsing kBase + `contact_section` throws; a test failure if none.
+std::string error_of(const std::string& contact_section) {
+  try {
+    parse(contact_section);
+  } catch (const ScenarioError& error) {
+    return error.what();
+  } catch (const std::exception& error) {
+    ADD_FAILURE() << "not a ScenarioError: " << error.what();
+    return {};
+  }
+  ADD_FAILURE() << "no error for:\n" << contact_section;
+  return {};
+}
+
+void expect_all_auto(const ContactSettings& contact) {
+  EXPECT_EQ(contact.proximity_distance, 0.0);
+  EXPECT_EQ(contact.separation_distance, 0.0);
+  EXPECT_EQ(contact.test_point_spacing, 0.0);
+  EXPECT_EQ(contact.matching_length, 0.0);
+  EXPECT_EQ(contact.element_spacing, 0.0);
+}
+
+// ---- valid input ----
+
+TEST(ScenarioContact, AbsentSectionMeansNoContact) {
+  const ContactSettings contact = parse("").contact;
+  EXPECT_FALSE(contact.enabled);
+  EXPECT_TRUE(contact.self_contact);
+  EXPECT_TRUE(contact.beams.empty());
+  expect_all_auto(contact);
+}
+
+TEST(ScenarioContact, EmptySectionEnablesContactWithDefaults) {
+  for (const std::string section : {"contact: {}\n", "contact:\n", "contact: # all defaults\n"}) {
+    const ContactSettings contact = parse(section).contact;
+    EXPECT_TRUE(contact.enabled) << section;
+    EXPECT_TRUE(contact.self_contact) << section;
+    EXPECT_TRUE(contact.beams.empty()) << section;  // all beams
+    expect_all_auto(contact);
+  }
+}
+
+TEST(ScenarioContact, EveryKeyIsRead) {
+  const ContactSettings contact = parse(R"(contact:
+  enabled: true
+  self_contact: false
+  beams: [strand, rod]
+  proximity_distance: 0.5
+  separation_distance: 2.5
+  test_point_spacing: 0.25
+  matching_length: 0.75
+  element_spacing: 0.1
+)")
+                                      .contact;
+  EXPECT_TRUE(contact.enabled);
+  EXPECT_FALSE(contact.self_contact);
+  EXPECT_EQ(contact.beams, (std::vector<int>{1, 0}));  // in the order given
+  EXPECT_DOUBLE_EQ(contact.proximity_distance, 0.5);
+  EXPECT_DOUBLE_EQ(contact.separation_distance, 2.5);
+  EXPECT_DOUBLE_EQ(contact.test_point_spacing, 0.25);
+  EXPECT_DOUBLE_EQ(contact.matching_length, 0.75);
+  EXPECT_DOUBLE_EQ(contact.element_spacing, 0.1);
+}
+
+TEST(ScenarioContact, EnabledFalseKeepsTheOtherSettings) {
+  const ContactSettings contact = parse("contact:\n  enabled: false\n  proximity_distance: 0.4\n").contact;
+  EXPECT_FALSE(contact.enabled);
+  EXPECT_DOUBLE_EQ(contact.proximity_distance, 0.4);
+  EXPECT_FALSE(parse("contact: {enabled: False}\n").contact.enabled);
+  EXPECT_TRUE(parse("contact: {enabled: true}\n").contact.enabled);
+}
+
+TEST(ScenarioContact, AutoIsAccepted) {
+  const ContactSettings contact = parse(R"(contact:
+  proximity_distance: auto
+  separation_distance: auto
+  test_point_spacing: auto
+  matching_length: auto
+  element_spacing: auto
+)")
+                                      .contact;
+  EXPECT_TRUE(contact.enabled);
+  expect_all_auto(contact);
+}
+
+TEST(ScenarioContact, BeamsByNameResolveToIndices) {
+  EXPECT_EQ(parse("contact: {beams: [wire]}\n").contact.beams, std::vector<int>{2});
+  EXPECT_EQ(parse("contact:\n  beams:\n    - rod\n    - wire\n    - strand\n").contact.beams,
+            (std::vector<int>{0, 2, 1}));
+  EXPECT_EQ(parse("contact: {beams: [\"strand\"]}\n").contact.beams, std::vector<int>{1});  // quoted name
+}
+
+TEST(ScenarioContact, ConsistencyRulesAcceptTheLimitsAndAutoValues) {
+  // matching_length may equal test_point_spacing; separation_distance just above proximity_distance.
+  const ContactSettings contact =
+      parse(
+          "contact:\n  test_point_spacing: 0.2\n  matching_length: 0.2\n  proximity_distance: 0.3\n"
+          "  separation_distance: 0.31\n")
+          .contact;
+  EXPECT_DOUBLE_EQ(contact.matching_length, 0.2);
+  EXPECT_DOUBLE_EQ(contact.separation_distance, 0.31);
+  // Only explicit values are compared: an auto partner is derived when the run starts.
+  EXPECT_NO_THROW(parse("contact:\n  matching_length: 0.01\n  separation_distance: 0.01\n"));
+  EXPECT_NO_THROW(parse("contact:\n  test_point_spacing: 5\n  matching_length: auto\n"));
+  EXPECT_NO_THROW(parse("contact:\n  proximity_distance: 5\n  separation_distance: auto\n"));
+}
+
+// ---- errors ----
+
+TEST(ScenarioContactErrors, UnknownBeam) {
+  EXPECT_EQ(error_of("contact:\n  beams: [rod, rdo]\n"),
+            "knot.yaml:26: contact.beams[1]: expected the name of a beam (rod | strand | wire), got rdo");
+  EXPECT_EQ(error_of("contact:\n  beams:\n    - wire\n    - [rod]\n"),
+            "knot.yaml:28: contact.beams[1]: expected the name of a beam (rod | strand | wire), got [rod]");
+}
+
+TEST(ScenarioContactErrors, DuplicateBeam) {
+  EXPECT_EQ(error_of("contact:\n  beams:\n    - rod\n    - strand\n    - rod\n"),
+            "knot.yaml:29: contact.beams[2]: expected each beam once in contact.beams, got rod");
+}
+
+TEST(ScenarioContactErrors, BeamsNotANonEmptyList) {
+  const std::string expected = "expected a list of beam names, non-empty, each beam once";
+  EXPECT_EQ(error_of("contact:\n  beams: []\n"), "knot.yaml:26: contact.beams: " + expected + ", got []");
+  EXPECT_EQ(error_of("contact:\n  beams:\n"),
+            "knot.yaml:26: contact.beams: " + expected + ", got nothing (null)");
+  EXPECT_EQ(error_of("contact:\n  beams: rod\n"), "knot.yaml:26: contact.beams: " + expected + ", got rod");
+}
+
+TEST(ScenarioContactErrors, NonPositiveLengths) {
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: -0.3\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got -0.3");
+  EXPECT_EQ(error_of("contact:\n  self_contact: true\n  test_point_spacing: 0\n"),
+            "knot.yaml:27: contact.test_point_spacing: expected a number > 0 or auto (mm), got 0");
+  EXPECT_EQ(error_of("contact:\n  element_spacing: -1e-3\n"),
+            "knot.yaml:26: contact.element_spacing: expected a number > 0 or auto (mm), got -1e-3");
+  EXPECT_EQ(error_of("contact:\n  matching_length: -2\n"),
+            "knot.yaml:26: contact.matching_length: expected a number > 0 or auto, >= test_point_spacing "
+            "(mm), got -2");
+  EXPECT_EQ(error_of("contact:\n  separation_distance: 0\n"),
+            "knot.yaml:26: contact.separation_distance: expected a number > 0 or auto, > proximity_distance "
+            "(mm), got 0");
+}
+
+TEST(ScenarioContactErrors, LengthsThatAreNotNumbers) {
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: thick\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got thick");
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: \"0.3\"\n"),  // quoted: a string
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got \"0.3\"");
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: \"auto\"\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got \"auto\"");
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: Auto\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got Auto");
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: [0.3]\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got [0.3]");
+  EXPECT_EQ(
+      error_of("contact:\n  proximity_distance:\n"),
+      "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got nothing (null)");
+  EXPECT_EQ(error_of("contact:\n  proximity_distance: .nan\n"),
+            "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got .nan");
+}
+
+TEST(ScenarioContactErrors, Booleans) {
+  EXPECT_EQ(error_of("contact:\n  enabled: yes\n"),
+            "knot.yaml:26: contact.enabled: expected true or false, got yes");
+  EXPECT_EQ(error_of("contact:\n  beams: [rod]\n  self_contact: 1\n"),
+            "knot.yaml:27: contact.self_contact: expected true or false, got 1");
+}
+
+TEST(ScenarioContactErrors, UnknownKey) {
+  const std::string keys =
+      "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
+      "test_point_spacing | matching_length | element_spacing";
+  EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
+            "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
+  EXPECT_EQ(error_of("contact: {friction: 0.2}\n"),
+            "knot.yaml:25: contact.friction: expected " + keys + ", got an unknown key");
+}
+
+TEST(ScenarioContactErrors, RepeatedKey) {
+  EXPECT_EQ(
+      error_of("contact:\n  proximity_distance: 0.3\n  proximity_distance: 0.4\n"),
+      "knot.yaml:27: contact.proximity_distance: expected each key once (first given at line 26), got a "
+      "repeated key");
+}
+
+TEST(ScenarioContactErrors, SectionNotAMap) {
+  EXPECT_EQ(error_of("contact: [rod, strand]\n"), "knot.yaml:25: contact: expected a map, got [rod, strand]");
+  EXPECT_EQ(error_of("contact: true\n"), "knot.yaml:25: contact: expected a map, got true");
+}
+
+TEST(ScenarioContactErrors, MatchingIntervalsMustOverlap) {
+  EXPECT_EQ(error_of("contact:\n  test_point_spacing: 0.2\n  matching_length: 0.15\n"),
+            "knot.yaml:27: contact.matching_length: expected >= test_point_spacing (successive matching "
+            "intervals must overlap), got 0.15");
+  // reported at matching_length whichever comes first
+  EXPECT_EQ(error_of("contact:\n  matching_length: 0.15\n  beams: [rod]\n  test_point_spacing: 0.2\n"),
+            "knot.yaml:26: contact.matching_length: expected >= test_point_spacing (successive matching "
+            "intervals must overlap), got 0.15");
+}
+
+TEST(ScenarioContactErrors, SeparationMustExceedProximity) {
+  EXPECT_EQ(
+      error_of("contact:\n  proximity_distance: 0.3\n  separation_distance: 0.3\n"),
+      "knot.yaml:27: contact.separation_distance: expected > proximity_distance (neighbouring parts of a "
+      "beam would be paired), got 0.3");
+  EXPECT_EQ(
+      error_of("contact:\n  separation_distance: 0.2\n  proximity_distance: 0.3\n"),
+      "knot.yaml:26: contact.separation_distance: expected > proximity_distance (neighbouring parts of a "
+      "beam would be paired), got 0.2");
+}
+
+// ---- describe ----
+
+bool contains(const std::string& text, const std::string& part) {
+  return text.find(part) != std::string::npos;
+}
+
+TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
+  const std::string text = describe(parse("contact:\n  beams: [wire, rod]\n  proximity_distance: 0.3\n"));
+  const auto output = text.find("\noutput:\n");
+  const auto contact = text.find("\ncontact:\n");
+  ASSERT_NE(output, std::string::npos) << text;
+  ASSERT_NE(contact, std::string::npos) << text;
+  EXPECT_LT(output, contact) << text;
+  EXPECT_TRUE(contains(text,
+                       "contact:\n"
+                       "  enabled: true\n"
+                       "  self_contact: true\n"
+                       "  beams: [wire, rod]\n"
+                       "  proximity_distance: 0.3  # mm\n"
+                       "  separation_distance: auto  # mm\n"
+                       "  test_point_spacing: auto  # mm\n"
+                       "  matching_length: auto  # mm\n"
+                       "  element_spacing: auto  # mm\n"))
+      << text;
+
+  const std::string absent = describe(parse(""));
+  EXPECT_TRUE(contains(
+      absent,
+      "contact:\n  enabled: false\n  self_contact: true\n  beams: [rod, strand, wire]  # all beams\n"))
+      << absent;
+}
+
+TEST(ScenarioContactDescribe, RoundTrips) {
+  for (const std::string section :
+       {"", "contact: {}\n", "contact: {enabled: false, self_contact: false}\n",
+        "contact:\n  beams: [strand]\n  proximity_distance: 0.5\n  separation_distance: 2.5\n"
+        "  test_point_spacing: 0.25\n  matching_length: 0.75\n  element_spacing: 0.125\n"}) {
+    const Scenario original = parse(section);
+    Scenario again;
+    ASSERT_NO_THROW(again = parse_scenario(describe(original), "described.yaml")) << describe(original);
+    const ContactSettings& a = original.contact;
+    const ContactSettings& b = again.contact;
+    EXPECT_EQ(a.enabled, b.enabled) << section;
+    EXPECT_EQ(a.self_contact, b.self_contact) << section;
+    // describe names every beam when all take part
+    const std::vector<int> all_beams{0, 1, 2};
+    EXPECT_EQ(a.beams.empty() ? all_beams : a.beams, b.beams) << section;
+    EXPECT_EQ(a.proximity_distance, b.proximity_distance) << section;
+    EXPECT_EQ(a.separation_distance, b.separation_distance) << section;
+    EXPECT_EQ(a.test_point_spacing, b.test_point_spacing) << section;
+    EXPECT_EQ(a.matching_length, b.matching_length) << section;
+    EXPECT_EQ(a.element_spacing, b.element_spacing) << section;
+  }
+}
+
+}  // namespace
+}  // namespace nodus::scenario
