@@ -383,30 +383,47 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
     for (int e = 0; e < model.beam(b).num_elements(); ++e) elements.push_back(curves.first_element(b) + e);
   const ElementTree tree(curves, elements);
 
+  // Beam by beam and zone by zone in parallel; results are gathered in order, so they do not depend on the
+  // number of threads.
+  const auto num_active = static_cast<std::ptrdiff_t>(active.size());
+  std::vector<std::vector<RawZone>> found(active.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < num_active; ++k)
+    found[static_cast<std::size_t>(k)] =
+        zones_from_beam(curves, tree, active[static_cast<std::size_t>(k)], prm);
   std::vector<RawZone> raw;
-  for (int b : active) {
-    std::vector<RawZone> z = zones_from_beam(curves, tree, b, prm);
-    raw.insert(raw.end(), z.begin(), z.end());
-  }
+  for (const std::vector<RawZone>& z : found) raw.insert(raw.end(), z.begin(), z.end());
 
-  ContactGeometry result;
-  for (ProximityZone zone : merge(std::move(raw))) {
+  const std::vector<ProximityZone> zones = merge(std::move(raw));
+  const auto num_zones = static_cast<std::ptrdiff_t>(zones.size());
+  std::vector<std::vector<ContactElement>> built(zones.size());
+#pragma omp parallel for schedule(dynamic)
+  for (std::ptrdiff_t k = 0; k < num_zones; ++k) {
+    const ProximityZone& zone = zones[static_cast<std::size_t>(k)];
     const double spacing = prm.element_spacing > 0.0
                                ? prm.element_spacing
                                : 0.5 * std::min(model.beam(zone.beam_i).element_length(),
                                                 model.beam(zone.beam_j).element_length());
     const int count = std::max(
         2, static_cast<int>(std::ceil(std::min(zone.b - zone.a, std::abs(zone.d - zone.c)) / spacing)));
-    zone.first_element = static_cast<int>(result.elements.size());
-    const int zone_index = static_cast<int>(result.zones.size());
-    for (int k = 0; k < count; ++k) {  // Eq. 46-48
+    for (int i = 0; i < count; ++i) {  // Eq. 46-48
       ContactElement element;
-      element.zone = zone_index;
-      if (make_element(curves, zone, static_cast<double>(k) / (count - 1), element))
-        result.elements.push_back(element);
+      if (make_element(curves, zone, static_cast<double>(i) / (count - 1), element))
+        built[static_cast<std::size_t>(k)].push_back(element);
     }
-    zone.num_elements = static_cast<int>(result.elements.size()) - zone.first_element;
-    if (zone.num_elements > 0) result.zones.push_back(zone);
+  }
+
+  ContactGeometry result;
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    if (built[k].empty()) continue;
+    ProximityZone zone = zones[k];
+    zone.first_element = static_cast<int>(result.elements.size());
+    zone.num_elements = static_cast<int>(built[k].size());
+    for (ContactElement& e : built[k]) {
+      e.zone = static_cast<int>(result.zones.size());
+      result.elements.push_back(e);
+    }
+    result.zones.push_back(zone);
   }
   return result;
 }
