@@ -347,17 +347,17 @@ DetectionParameters resolve_parameters(const DetectionParameters& given, const m
   if (p.matching_length <= 0.0) p.matching_length = 2.0 * p.test_point_spacing;
   if (p.separation_distance <= 0.0) p.separation_distance = 4.0 * delta;
   if (p.matching_length < p.test_point_spacing)
-    throw std::invalid_argument(
-        fmt::format("contact: matching_length {} mm is below test_point_spacing {} mm; successive matching "
-                    "intervals must "
-                    "overlap",
-                    p.matching_length, p.test_point_spacing));
+    throw std::invalid_argument(fmt::format(
+        "contact: matching_length {:.6g} mm is below test_point_spacing {:.6g} mm; successive matching "
+        "intervals must "
+        "overlap",
+        p.matching_length, p.test_point_spacing));
   if (p.self_contact && p.separation_distance <= delta)
-    throw std::invalid_argument(
-        fmt::format("contact: separation_distance {} mm is not above proximity_distance {} mm; neighbouring "
-                    "parts of a beam "
-                    "would be paired",
-                    p.separation_distance, delta));
+    throw std::invalid_argument(fmt::format(
+        "contact: separation_distance {:.6g} mm is not above proximity_distance {:.6g} mm; neighbouring "
+        "parts of a beam "
+        "would be paired",
+        p.separation_distance, delta));
   return p;
 }
 

@@ -1,0 +1,80 @@
+// Contact detection inside a run: counts per step, the geometry of the committed state, and the check of the
+// resolved lengths when the run starts.
+
+#include <gtest/gtest.h>
+
+#include "nodus/scenario/scenario.hpp"
+#include "nodus/simulation/simulation.hpp"
+
+namespace nodus::simulation {
+namespace {
+
+/// Two parallel rods 0.22 mm apart (R = 0.1 mm), one of them pushed sideways towards the other at its end.
+std::string pair_scenario(const std::string& contact) {
+  return R"(
+materials:
+  - {name: m, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: a, material: m, radius: 0.1, length: 10, elements: 20, start: [0, 0.11, 0]}
+  - {name: b, material: m, radius: 0.1, length: 10, elements: 20, start: [0, -0.11, 0]}
+conditions:
+  - {name: a_root, type: clamp, beam: a, at: start}
+  - {name: b_root, type: clamp, beam: b, at: start}
+  - {name: a_end, type: motion, beam: a, at: end}
+  - {name: b_end, type: clamp, beam: b, at: end}
+stages:
+  - name: push
+    steps: 4
+    motions:
+      a_end: {translation: [0, 0.5, 0]}
+)" + contact;
+}
+
+class Recorder : public StepObserver {
+ public:
+  std::vector<StepRecord> records;
+  void on_step(const Simulation&, const StepRecord& r) override { records.push_back(r); }
+};
+
+TEST(SimulationContact, EachStepCountsTheZonesOfItsConvergedState) {
+  Simulation sim(scenario::parse_scenario(pair_scenario("contact: {}\n"), "pair.yaml"));
+  ASSERT_NE(sim.contact(), nullptr);
+  // Before the first step: the rods lie side by side along their whole length.
+  ASSERT_EQ(sim.contact()->zones.size(), 1u);
+  EXPECT_NEAR(sim.contact()->elements.front().gap, 0.02, 1e-12);
+  EXPECT_DOUBLE_EQ(sim.detection_parameters().proximity_distance, 0.3);
+  Recorder recorder;
+  ASSERT_TRUE(sim.run({&recorder}).converged);
+  ASSERT_EQ(recorder.records.size(), 4u);
+  // The end of a moves 0.5 mm away from b: the zone shrinks to the part near the clamped roots.
+  for (const StepRecord& r : recorder.records) EXPECT_EQ(r.zones, 1);
+  EXPECT_LT(recorder.records.back().contact_elements, recorder.records.front().contact_elements);
+  EXPECT_EQ(recorder.records.back().contact_elements, static_cast<int>(sim.contact()->elements.size()));
+  const contact::ProximityZone& z = sim.contact()->zones[0];
+  EXPECT_DOUBLE_EQ(z.a, 0.0);
+  EXPECT_LT(z.b, 10.0);
+}
+
+TEST(SimulationContact, NoContactSectionNoDetection) {
+  Simulation sim(scenario::parse_scenario(pair_scenario(""), "pair.yaml"));
+  EXPECT_EQ(sim.contact(), nullptr);
+  Recorder recorder;
+  ASSERT_TRUE(sim.run({&recorder}).converged);
+  for (const StepRecord& r : recorder.records) EXPECT_EQ(r.zones, 0);
+}
+
+TEST(SimulationContact, InconsistentResolvedLengthsAreRefusedInOneLine) {
+  // delta_prox defaults to 3 R = 0.3 mm, above the separation distance given.
+  try {
+    Simulation sim(
+        scenario::parse_scenario(pair_scenario("contact: {separation_distance: 0.25}\n"), "pair.yaml"));
+    FAIL() << "expected a ScenarioError";
+  } catch (const scenario::ScenarioError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.find('\n'), std::string::npos);
+    EXPECT_EQ(message.rfind("pair.yaml: contact: separation_distance 0.25 mm", 0), 0u) << message;
+  }
+}
+
+}  // namespace
+}  // namespace nodus::simulation
