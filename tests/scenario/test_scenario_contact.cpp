@@ -1,5 +1,6 @@
-// Tests of the `contact` section of a scenario file: defaults, every key, the word auto, beams by name, and
-// the exact one-line message "FILE:LINE: KEY: expected ..., got ..." of each kind of bad input.
+// Tests of the `contact` section of a scenario file: defaults, every key (detection and mechanics), the word
+// auto, beams by name, and the exact one-line message "FILE:LINE: KEY: expected ..., got ..." of each kind
+// of bad input.
 
 #include <string>
 #include <vector>
@@ -64,6 +65,19 @@ void expect_all_auto(const ContactSettings& contact) {
   EXPECT_EQ(contact.element_spacing, 0.0);
 }
 
+/// The mechanics keys at their defaults: forces on, auto penalty and lengths, no friction, loops 4 x 6.
+void expect_mechanics_defaults(const ContactSettings& contact) {
+  EXPECT_TRUE(contact.forces);
+  EXPECT_EQ(contact.penalty, 0.0);  // auto
+  EXPECT_EQ(contact.max_penetration, 0.0);
+  EXPECT_EQ(contact.regularization, 0.0);
+  EXPECT_EQ(contact.friction, 0.0);
+  EXPECT_EQ(contact.max_reversible_slip, 0.0);
+  EXPECT_EQ(contact.max_detections, 4);
+  EXPECT_EQ(contact.max_normal_iterations, 6);
+  EXPECT_EQ(contact.normal_tolerance, 1e-3);
+}
+
 // ---- valid input ----
 
 TEST(ScenarioContact, AbsentSectionMeansNoContact) {
@@ -72,6 +86,7 @@ TEST(ScenarioContact, AbsentSectionMeansNoContact) {
   EXPECT_TRUE(contact.self_contact);
   EXPECT_TRUE(contact.beams.empty());
   expect_all_auto(contact);
+  expect_mechanics_defaults(contact);
 }
 
 TEST(ScenarioContact, EmptySectionEnablesContactWithDefaults) {
@@ -81,6 +96,7 @@ TEST(ScenarioContact, EmptySectionEnablesContactWithDefaults) {
     EXPECT_TRUE(contact.self_contact) << section;
     EXPECT_TRUE(contact.beams.empty()) << section;  // all beams
     expect_all_auto(contact);
+    expect_mechanics_defaults(contact);
   }
 }
 
@@ -94,6 +110,15 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   test_point_spacing: 0.25
   matching_length: 0.75
   element_spacing: 0.1
+  forces: false
+  penalty: 250
+  max_penetration: 0.004
+  regularization: 0.0005
+  friction: 0.3
+  max_reversible_slip: 0.002
+  max_detections: 2
+  max_normal_iterations: 10
+  normal_tolerance: 1e-4
 )")
                                       .contact;
   EXPECT_TRUE(contact.enabled);
@@ -104,6 +129,55 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   EXPECT_DOUBLE_EQ(contact.test_point_spacing, 0.25);
   EXPECT_DOUBLE_EQ(contact.matching_length, 0.75);
   EXPECT_DOUBLE_EQ(contact.element_spacing, 0.1);
+  EXPECT_FALSE(contact.forces);
+  EXPECT_DOUBLE_EQ(contact.penalty, 250.0);
+  EXPECT_DOUBLE_EQ(contact.max_penetration, 0.004);
+  EXPECT_DOUBLE_EQ(contact.regularization, 0.0005);
+  EXPECT_DOUBLE_EQ(contact.friction, 0.3);
+  EXPECT_DOUBLE_EQ(contact.max_reversible_slip, 0.002);
+  EXPECT_EQ(contact.max_detections, 2);
+  EXPECT_EQ(contact.max_normal_iterations, 10);
+  EXPECT_DOUBLE_EQ(contact.normal_tolerance, 1e-4);
+}
+
+TEST(ScenarioContact, MechanicsKeysAcceptTheirLimits) {
+  // friction may be 0 (frictionless); the loops may run once; any positive value is taken as it is.
+  const ContactSettings contact = parse(
+                                      "contact:\n  friction: 0\n  max_detections: 1\n"
+                                      "  max_normal_iterations: 1\n  normal_tolerance: 1e-12\n"
+                                      "  penalty: 1e-9\n  forces: True\n")
+                                      .contact;
+  EXPECT_EQ(contact.friction, 0.0);
+  EXPECT_EQ(contact.max_detections, 1);
+  EXPECT_EQ(contact.max_normal_iterations, 1);
+  EXPECT_DOUBLE_EQ(contact.normal_tolerance, 1e-12);
+  EXPECT_DOUBLE_EQ(contact.penalty, 1e-9);
+  EXPECT_TRUE(contact.forces);
+  EXPECT_DOUBLE_EQ(parse("contact: {friction: 1.5}\n").contact.friction, 1.5);  // no upper limit
+  EXPECT_EQ(parse("contact: {max_detections: +3}\n").contact.max_detections, 3);
+  // The mechanics keys are independent of the detection keys and of enabled.
+  const ContactSettings off = parse("contact:\n  enabled: false\n  friction: 0.2\n").contact;
+  EXPECT_FALSE(off.enabled);
+  EXPECT_DOUBLE_EQ(off.friction, 0.2);
+  EXPECT_FALSE(parse("contact: {forces: false}\n").contact.forces);
+}
+
+TEST(ScenarioContact, DocsExampleOfTheMechanicsKeys) {
+  // The example of the contact section of docs/scenario.md.
+  const ContactSettings contact = parse(R"(contact:
+  friction: 0.3
+  max_penetration: 0.002   # mm; omit for auto (0.02 R)
+  max_detections: 6
+)")
+                                      .contact;
+  EXPECT_TRUE(contact.forces);
+  EXPECT_DOUBLE_EQ(contact.friction, 0.3);
+  EXPECT_DOUBLE_EQ(contact.max_penetration, 0.002);
+  EXPECT_EQ(contact.penalty, 0.0);
+  EXPECT_EQ(contact.regularization, 0.0);
+  EXPECT_EQ(contact.max_reversible_slip, 0.0);
+  EXPECT_EQ(contact.max_detections, 6);
+  EXPECT_EQ(contact.max_normal_iterations, 6);
 }
 
 TEST(ScenarioContact, EnabledFalseKeepsTheOtherSettings) {
@@ -121,10 +195,15 @@ TEST(ScenarioContact, AutoIsAccepted) {
   test_point_spacing: auto
   matching_length: auto
   element_spacing: auto
+  penalty: auto
+  max_penetration: auto
+  regularization: auto
+  max_reversible_slip: auto
 )")
                                       .contact;
   EXPECT_TRUE(contact.enabled);
   expect_all_auto(contact);
+  expect_mechanics_defaults(contact);
 }
 
 TEST(ScenarioContact, BeamsByNameResolveToIndices) {
@@ -186,6 +265,77 @@ TEST(ScenarioContactErrors, NonPositiveLengths) {
             "(mm), got 0");
 }
 
+TEST(ScenarioContactErrors, NonPositivePenaltyAndMechanicsLengths) {
+  EXPECT_EQ(error_of("contact:\n  penalty: -100\n"),
+            "knot.yaml:26: contact.penalty: expected a number > 0 or auto (N/mm), got -100");
+  EXPECT_EQ(error_of("contact:\n  forces: true\n  penalty: 0\n"),
+            "knot.yaml:27: contact.penalty: expected a number > 0 or auto (N/mm), got 0");
+  EXPECT_EQ(error_of("contact:\n  max_penetration: -0.002\n"),
+            "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got -0.002");
+  EXPECT_EQ(error_of("contact:\n  max_penetration: 0\n"),
+            "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got 0");
+  EXPECT_EQ(error_of("contact:\n  regularization: -1e-4\n"),
+            "knot.yaml:26: contact.regularization: expected a number > 0 or auto (mm), got -1e-4");
+  EXPECT_EQ(error_of("contact:\n  beams: [rod]\n  max_reversible_slip: 0\n"),
+            "knot.yaml:27: contact.max_reversible_slip: expected a number > 0 or auto (mm), got 0");
+  EXPECT_EQ(error_of("contact:\n  normal_tolerance: 0\n"),
+            "knot.yaml:26: contact.normal_tolerance: expected a number > 0 (rad), got 0");
+  EXPECT_EQ(error_of("contact:\n  normal_tolerance: -0.01\n"),
+            "knot.yaml:26: contact.normal_tolerance: expected a number > 0 (rad), got -0.01");
+}
+
+TEST(ScenarioContactErrors, NegativeFriction) {
+  EXPECT_EQ(error_of("contact:\n  friction: -0.3\n"),
+            "knot.yaml:26: contact.friction: expected a number >= 0, got -0.3");
+  EXPECT_EQ(error_of("contact:\n  self_contact: false\n  friction: -1e-9\n"),
+            "knot.yaml:27: contact.friction: expected a number >= 0, got -1e-9");
+}
+
+TEST(ScenarioContactErrors, LoopCountsBelowOne) {
+  EXPECT_EQ(error_of("contact:\n  max_detections: 0\n"),
+            "knot.yaml:26: contact.max_detections: expected an integer >= 1, got 0");
+  EXPECT_EQ(error_of("contact:\n  max_detections: -2\n"),
+            "knot.yaml:26: contact.max_detections: expected an integer >= 1, got -2");
+  EXPECT_EQ(error_of("contact:\n  friction: 0.1\n  max_normal_iterations: 0\n"),
+            "knot.yaml:27: contact.max_normal_iterations: expected an integer >= 1, got 0");
+  EXPECT_EQ(error_of("contact:\n  max_normal_iterations: -1\n"),
+            "knot.yaml:26: contact.max_normal_iterations: expected an integer >= 1, got -1");
+}
+
+TEST(ScenarioContactErrors, MechanicsKeysOfTheWrongType) {
+  EXPECT_EQ(error_of("contact:\n  forces: yes\n"),
+            "knot.yaml:26: contact.forces: expected true or false, got yes");
+  EXPECT_EQ(error_of("contact:\n  forces: 0\n"),
+            "knot.yaml:26: contact.forces: expected true or false, got 0");
+  EXPECT_EQ(error_of("contact:\n  penalty: stiff\n"),
+            "knot.yaml:26: contact.penalty: expected a number > 0 or auto (N/mm), got stiff");
+  EXPECT_EQ(error_of("contact:\n  penalty: \"100\"\n"),  // quoted: a string
+            "knot.yaml:26: contact.penalty: expected a number > 0 or auto (N/mm), got \"100\"");
+  EXPECT_EQ(error_of("contact:\n  max_penetration: [0.002]\n"),
+            "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got [0.002]");
+  EXPECT_EQ(error_of("contact:\n  regularization:\n"),
+            "knot.yaml:26: contact.regularization: expected a number > 0 or auto (mm), got nothing (null)");
+  EXPECT_EQ(error_of("contact:\n  max_reversible_slip: AUTO\n"),
+            "knot.yaml:26: contact.max_reversible_slip: expected a number > 0 or auto (mm), got AUTO");
+  // friction, the loop counts and normal_tolerance have a plain default: auto is not a value of theirs
+  EXPECT_EQ(error_of("contact:\n  friction: auto\n"),
+            "knot.yaml:26: contact.friction: expected a number >= 0, got auto");
+  EXPECT_EQ(error_of("contact:\n  friction: high\n"),
+            "knot.yaml:26: contact.friction: expected a number >= 0, got high");
+  EXPECT_EQ(error_of("contact:\n  max_detections: 2.5\n"),
+            "knot.yaml:26: contact.max_detections: expected an integer >= 1, got 2.5");
+  EXPECT_EQ(error_of("contact:\n  max_detections: auto\n"),
+            "knot.yaml:26: contact.max_detections: expected an integer >= 1, got auto");
+  EXPECT_EQ(error_of("contact:\n  max_normal_iterations: 1e1\n"),
+            "knot.yaml:26: contact.max_normal_iterations: expected an integer >= 1, got 1e1");
+  EXPECT_EQ(error_of("contact:\n  max_normal_iterations: \"6\"\n"),
+            "knot.yaml:26: contact.max_normal_iterations: expected an integer >= 1, got \"6\"");
+  EXPECT_EQ(error_of("contact:\n  normal_tolerance: auto\n"),
+            "knot.yaml:26: contact.normal_tolerance: expected a number > 0 (rad), got auto");
+  EXPECT_EQ(error_of("contact:\n  normal_tolerance: .inf\n"),
+            "knot.yaml:26: contact.normal_tolerance: expected a number > 0 (rad), got .inf");
+}
+
 TEST(ScenarioContactErrors, LengthsThatAreNotNumbers) {
   EXPECT_EQ(error_of("contact:\n  proximity_distance: thick\n"),
             "knot.yaml:26: contact.proximity_distance: expected a number > 0 or auto (mm), got thick");
@@ -214,11 +364,15 @@ TEST(ScenarioContactErrors, Booleans) {
 TEST(ScenarioContactErrors, UnknownKey) {
   const std::string keys =
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
-      "test_point_spacing | matching_length | element_spacing";
+      "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
+      "regularization | friction | max_reversible_slip | max_detections | max_normal_iterations | "
+      "normal_tolerance";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
-  EXPECT_EQ(error_of("contact: {friction: 0.2}\n"),
-            "knot.yaml:25: contact.friction: expected " + keys + ", got an unknown key");
+  EXPECT_EQ(error_of("contact: {coulomb: 0.2}\n"),
+            "knot.yaml:25: contact.coulomb: expected " + keys + ", got an unknown key");
+  EXPECT_EQ(error_of("contact:\n  friction: 0.2\n  stiffness: 100\n"),
+            "knot.yaml:27: contact.stiffness: expected " + keys + ", got an unknown key");
 }
 
 TEST(ScenarioContactErrors, RepeatedKey) {
@@ -276,8 +430,34 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  separation_distance: auto  # mm\n"
                        "  test_point_spacing: auto  # mm\n"
                        "  matching_length: auto  # mm\n"
-                       "  element_spacing: auto  # mm\n"))
+                       "  element_spacing: auto  # mm\n"
+                       "  forces: true\n"
+                       "  penalty: auto  # N/mm\n"
+                       "  max_penetration: auto  # mm\n"
+                       "  regularization: auto  # mm\n"
+                       "  friction: 0\n"
+                       "  max_reversible_slip: auto  # mm\n"
+                       "  max_detections: 4\n"
+                       "  max_normal_iterations: 6\n"
+                       "  normal_tolerance: 0.001  # rad\n"))
       << text;
+
+  const std::string given = describe(parse(
+      "contact:\n  forces: false\n  penalty: 250\n  max_penetration: 0.004\n  regularization: 0.0005\n"
+      "  friction: 0.3\n  max_reversible_slip: 0.002\n  max_detections: 2\n  max_normal_iterations: 10\n"
+      "  normal_tolerance: 1e-4\n"));
+  EXPECT_TRUE(contains(given,
+                       "  element_spacing: auto  # mm\n"
+                       "  forces: false\n"
+                       "  penalty: 250  # N/mm\n"
+                       "  max_penetration: 0.004  # mm\n"
+                       "  regularization: 0.0005  # mm\n"
+                       "  friction: 0.3\n"
+                       "  max_reversible_slip: 0.002  # mm\n"
+                       "  max_detections: 2\n"
+                       "  max_normal_iterations: 10\n"
+                       "  normal_tolerance: 0.0001  # rad\n"))
+      << given;
 
   const std::string absent = describe(parse(""));
   EXPECT_TRUE(contains(
@@ -290,7 +470,11 @@ TEST(ScenarioContactDescribe, RoundTrips) {
   for (const std::string section :
        {"", "contact: {}\n", "contact: {enabled: false, self_contact: false}\n",
         "contact:\n  beams: [strand]\n  proximity_distance: 0.5\n  separation_distance: 2.5\n"
-        "  test_point_spacing: 0.25\n  matching_length: 0.75\n  element_spacing: 0.125\n"}) {
+        "  test_point_spacing: 0.25\n  matching_length: 0.75\n  element_spacing: 0.125\n",
+        "contact:\n  forces: false\n  penalty: 123.456\n  max_penetration: 0.0021\n  regularization: auto\n"
+        "  friction: 0.3\n  max_reversible_slip: 1e-3\n  max_detections: 7\n  max_normal_iterations: 1\n"
+        "  normal_tolerance: 2.5e-4\n",
+        "contact: {enabled: false, friction: 0.1, penalty: 1e5, max_penetration: auto}\n"}) {
     const Scenario original = parse(section);
     Scenario again;
     ASSERT_NO_THROW(again = parse_scenario(describe(original), "described.yaml")) << describe(original);
@@ -306,6 +490,15 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.test_point_spacing, b.test_point_spacing) << section;
     EXPECT_EQ(a.matching_length, b.matching_length) << section;
     EXPECT_EQ(a.element_spacing, b.element_spacing) << section;
+    EXPECT_EQ(a.forces, b.forces) << section;
+    EXPECT_EQ(a.penalty, b.penalty) << section;
+    EXPECT_EQ(a.max_penetration, b.max_penetration) << section;
+    EXPECT_EQ(a.regularization, b.regularization) << section;
+    EXPECT_EQ(a.friction, b.friction) << section;
+    EXPECT_EQ(a.max_reversible_slip, b.max_reversible_slip) << section;
+    EXPECT_EQ(a.max_detections, b.max_detections) << section;
+    EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;
+    EXPECT_EQ(a.normal_tolerance, b.normal_tolerance) << section;
   }
 }
 

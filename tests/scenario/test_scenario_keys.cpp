@@ -82,6 +82,11 @@ TEST(ScenarioKeys, ExpectedTexts) {
   EXPECT_EQ(expected_text(scenario_key("contact.proximity_distance")), "a number > 0 or auto (mm)");
   EXPECT_EQ(expected_text(scenario_key("contact.beams")), "a list of beam names, non-empty, each beam once");
   EXPECT_EQ(expected_text(scenario_key("contact")), "a map");
+  EXPECT_EQ(expected_text(scenario_key("contact.penalty")), "a number > 0 or auto (N/mm)");
+  EXPECT_EQ(expected_text(scenario_key("contact.friction")), "a number >= 0");
+  EXPECT_EQ(expected_text(scenario_key("contact.max_detections")), "an integer >= 1");
+  EXPECT_EQ(expected_text(scenario_key("contact.normal_tolerance")), "a number > 0 (rad)");
+  EXPECT_EQ(expected_text(scenario_key("contact.forces")), "true or false");
   EXPECT_THROW(scenario_key("no.such.key"), std::logic_error);
 }
 
@@ -127,6 +132,24 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   EXPECT_EQ(contact.test_point_spacing, 0.0);
   EXPECT_EQ(contact.matching_length, 0.0);
   EXPECT_EQ(contact.element_spacing, 0.0);
+  EXPECT_EQ(scenario_key("contact.forces").default_value, contact.forces ? "true" : "false");
+  EXPECT_EQ(scenario_key("contact.penalty").default_value, "auto");
+  EXPECT_EQ(scenario_key("contact.penalty").unit, "N/mm");
+  EXPECT_EQ(contact.penalty, 0.0);
+  for (const char* key :
+       {"contact.max_penetration", "contact.regularization", "contact.max_reversible_slip"}) {
+    EXPECT_EQ(scenario_key(key).default_value, "auto") << key;
+    EXPECT_EQ(scenario_key(key).unit, "mm") << key;
+  }
+  EXPECT_EQ(contact.max_penetration, 0.0);
+  EXPECT_EQ(contact.regularization, 0.0);
+  EXPECT_EQ(contact.max_reversible_slip, 0.0);
+  EXPECT_EQ(number(scenario_key("contact.friction").default_value), contact.friction);
+  EXPECT_EQ(number(scenario_key("contact.max_detections").default_value), contact.max_detections);
+  EXPECT_EQ(number(scenario_key("contact.max_normal_iterations").default_value),
+            contact.max_normal_iterations);
+  EXPECT_EQ(number(scenario_key("contact.normal_tolerance").default_value), contact.normal_tolerance);
+  EXPECT_EQ(scenario_key("contact.normal_tolerance").unit, "rad");
 
   const StageSpec stage;
   EXPECT_EQ(number(scenario_key("stages[].duration").default_value), stage.duration);

@@ -227,6 +227,15 @@ contact:
   test_point_spacing: 0.3
   matching_length: 0.6
   element_spacing: 0.05
+  forces: true
+  penalty: 500
+  max_penetration: auto
+  regularization: 0.0004
+  friction: 0.25
+  max_reversible_slip: 0.001
+  max_detections: 3
+  max_normal_iterations: 8
+  normal_tolerance: 0.002
 )";
 
 TEST(ScenarioReader, FullScenarioResolves) {
@@ -355,6 +364,15 @@ TEST(ScenarioReader, FullScenarioResolves) {
   EXPECT_DOUBLE_EQ(s.contact.test_point_spacing, 0.3);
   EXPECT_DOUBLE_EQ(s.contact.matching_length, 0.6);
   EXPECT_DOUBLE_EQ(s.contact.element_spacing, 0.05);
+  EXPECT_TRUE(s.contact.forces);
+  EXPECT_DOUBLE_EQ(s.contact.penalty, 500.0);
+  EXPECT_EQ(s.contact.max_penetration, 0.0);  // auto
+  EXPECT_DOUBLE_EQ(s.contact.regularization, 0.0004);
+  EXPECT_DOUBLE_EQ(s.contact.friction, 0.25);
+  EXPECT_DOUBLE_EQ(s.contact.max_reversible_slip, 0.001);
+  EXPECT_EQ(s.contact.max_detections, 3);
+  EXPECT_EQ(s.contact.max_normal_iterations, 8);
+  EXPECT_DOUBLE_EQ(s.contact.normal_tolerance, 0.002);
 }
 
 TEST(ScenarioReader, DefaultsOfOptionalSections) {
@@ -372,6 +390,16 @@ TEST(ScenarioReader, DefaultsOfOptionalSections) {
   EXPECT_TRUE(s.stages[0].loads[0].moment.isZero());
   EXPECT_FALSE(s.contact.enabled);  // no contact section: no contact
   EXPECT_TRUE(s.contact.beams.empty());
+  const ContactSettings contact_defaults;
+  EXPECT_EQ(s.contact.forces, contact_defaults.forces);
+  EXPECT_EQ(s.contact.penalty, contact_defaults.penalty);
+  EXPECT_EQ(s.contact.max_penetration, contact_defaults.max_penetration);
+  EXPECT_EQ(s.contact.regularization, contact_defaults.regularization);
+  EXPECT_EQ(s.contact.friction, contact_defaults.friction);
+  EXPECT_EQ(s.contact.max_reversible_slip, contact_defaults.max_reversible_slip);
+  EXPECT_EQ(s.contact.max_detections, contact_defaults.max_detections);
+  EXPECT_EQ(s.contact.max_normal_iterations, contact_defaults.max_normal_iterations);
+  EXPECT_EQ(s.contact.normal_tolerance, contact_defaults.normal_tolerance);
 }
 
 TEST(ScenarioReader, OptionalListsAndMapsMayBeEmpty) {
@@ -425,7 +453,7 @@ TEST(ScenarioErrors, UnknownKeys) {
                        "stages[0].motions.tip.spin"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  tolerance: 1\n", 35, "solver.tolerance"));
   EXPECT_TRUE(fails_at(kBase + "output: {vtk: 1}\n", 34, "output.vtk"));
-  EXPECT_TRUE(fails_at(kBase + "contact:\n  self_contact: true\n  friction: 0.1\n", 36, "contact.friction"));
+  EXPECT_TRUE(fails_at(kBase + "contact:\n  self_contact: true\n  coulomb: 0.1\n", 36, "contact.coulomb"));
   EXPECT_TRUE(fails_at(kBase + "units: {length: mm, mass: kg}\n", 34, "units.mass"));
   const std::string message = error_of(after_line(kBase, 8, "    radus: 1"));
   EXPECT_NE(message.find("radius"), std::string::npos) << message;  // lists the allowed keys
@@ -746,6 +774,15 @@ void expect_same(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.contact.test_point_spacing, b.contact.test_point_spacing);
   EXPECT_EQ(a.contact.matching_length, b.contact.matching_length);
   EXPECT_EQ(a.contact.element_spacing, b.contact.element_spacing);
+  EXPECT_EQ(a.contact.forces, b.contact.forces);
+  EXPECT_EQ(a.contact.penalty, b.contact.penalty);
+  EXPECT_EQ(a.contact.max_penetration, b.contact.max_penetration);
+  EXPECT_EQ(a.contact.regularization, b.contact.regularization);
+  EXPECT_EQ(a.contact.friction, b.contact.friction);
+  EXPECT_EQ(a.contact.max_reversible_slip, b.contact.max_reversible_slip);
+  EXPECT_EQ(a.contact.max_detections, b.contact.max_detections);
+  EXPECT_EQ(a.contact.max_normal_iterations, b.contact.max_normal_iterations);
+  EXPECT_EQ(a.contact.normal_tolerance, b.contact.normal_tolerance);
 }
 
 bool contains(const std::string& text, const std::string& part) {

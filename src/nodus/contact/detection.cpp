@@ -277,6 +277,36 @@ double smoothstep(double t) {
   return t * t * (3.0 - 2.0 * t);
 }
 
+/// The direction d between the section centres (Eq. 37) and the normal (Eq. 41-44), oriented from I towards
+/// J, of the sections `gi` and `gj`; false if neither is defined (coincident centres of parallel axes).
+bool section_normal(const SectionGeometry& gi, const SectionGeometry& gj, double length_scale,
+                    Eigen::Vector3d& d, Eigen::Vector3d& normal, double& parallel_weight) {
+  const Eigen::Vector3d centres = gj.r - gi.r;
+  const Eigen::Vector3d t_i = gi.dr.normalized();
+  Eigen::Vector3d t_j = gj.dr.normalized();
+  if (t_i.dot(t_j) < 0.0) t_j = -t_j;  // antiparallel parts: compare like with like
+  const Eigen::Vector3d cross = t_i.cross(t_j);
+  const double sin_angle = cross.norm();
+  if (centres.norm() > 1e-12 * length_scale) {
+    d = centres.normalized();
+  } else if (sin_angle > 0.0) {
+    d = cross / sin_angle;  // the axes meet: the common normal is the only candidate
+  } else {
+    return false;
+  }
+  const double w = smoothstep((sin_angle - kSinParallelBelow) / (kSinCrossAbove - kSinParallelBelow));
+  Eigen::Vector3d n_cross = Eigen::Vector3d::Zero();
+  if (sin_angle > 0.0) n_cross = (cross.dot(d) < 0.0 ? -cross : cross) / sin_angle;
+  const Eigen::Vector3d t_mean = (t_i + t_j).normalized();
+  Eigen::Vector3d n_parallel = d - d.dot(t_mean) * t_mean;
+  if (n_parallel.norm() > 0.0) n_parallel.normalize();
+  normal = w * n_cross + (1.0 - w) * n_parallel;
+  if (!(normal.norm() > 1e-12)) return false;
+  normal.normalize();
+  parallel_weight = 1.0 - w;
+  return true;
+}
+
 /// The contact element at relative abscissa zeta of `zone` (Eq. 33-45); false if the plane normal to the
 /// intermediate geometry misses one of the axes or the axes meet.
 bool make_element(const BeamCurves& curves, const ProximityZone& zone, double zeta, ContactElement& out) {
@@ -290,31 +320,9 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   if (!cut_axis(curves, bi, x_int, t_int, s_i) || !cut_axis(curves, bj, x_int, t_int, s_j)) return false;
   const SectionGeometry gi = curves.at(bi, s_i), gj = curves.at(bj, s_j);
 
-  const Eigen::Vector3d centres = gj.r - gi.r;
-  const Eigen::Vector3d t_i = gi.dr.normalized();
-  Eigen::Vector3d t_j = gj.dr.normalized();
-  if (t_i.dot(t_j) < 0.0) t_j = -t_j;  // antiparallel parts: compare like with like
-  const Eigen::Vector3d cross = t_i.cross(t_j);
-  const double sin_angle = cross.norm();
-  Eigen::Vector3d d;  // Eq. 37
-  if (centres.norm() > 1e-12 * curves.length(bi)) {
-    d = centres.normalized();
-  } else if (sin_angle > 0.0) {
-    d = cross / sin_angle;  // the axes meet: the common normal is the only candidate
-  } else {
-    return false;
-  }
-
-  // Normal direction (Eq. 41-44), oriented from I towards J.
-  const double w = smoothstep((sin_angle - kSinParallelBelow) / (kSinCrossAbove - kSinParallelBelow));
-  Eigen::Vector3d n_cross = Eigen::Vector3d::Zero();
-  if (sin_angle > 0.0) n_cross = (cross.dot(d) < 0.0 ? -cross : cross) / sin_angle;
-  const Eigen::Vector3d t_mean = (t_i + t_j).normalized();
-  Eigen::Vector3d n_parallel = d - d.dot(t_mean) * t_mean;
-  if (n_parallel.norm() > 0.0) n_parallel.normalize();
-  Eigen::Vector3d normal = w * n_cross + (1.0 - w) * n_parallel;
-  if (!(normal.norm() > 1e-12)) return false;
-  normal.normalize();
+  Eigen::Vector3d d, normal;
+  double parallel_weight = 0.0;
+  if (!section_normal(gi, gj, curves.length(bi), d, normal, parallel_weight)) return false;
 
   const Eigen::Vector2d xi_i = border_point(gi, d, curves.radius(bi));
   const Eigen::Vector2d xi_j = border_point(gj, -d, curves.radius(bj));
@@ -326,7 +334,7 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   out.position_j = gj.r + xi_j.x() * gj.g1 + xi_j.y() * gj.g2;
   out.normal = normal;
   out.gap = (out.position_j - out.position_i).dot(normal);  // Eq. 45
-  out.parallel_weight = 1.0 - w;
+  out.parallel_weight = parallel_weight;
   return true;
 }
 
@@ -364,6 +372,20 @@ DetectionParameters resolve_parameters(const DetectionParameters& given, const m
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
                         double zeta, ContactElement& out) {
   return make_element(BeamCurves(model, x), zone, zeta, out);
+}
+
+bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e) {
+  const BeamCurves curves(model, x);
+  const SectionGeometry gi = curves.at_element(e.particle_i.element, e.particle_i.local);
+  const SectionGeometry gj = curves.at_element(e.particle_j.element, e.particle_j.local);
+  Eigen::Vector3d d;
+  if (!section_normal(gi, gj, curves.length(e.particle_i.beam), d, e.normal, e.parallel_weight)) return false;
+  const Eigen::Vector2d& a = e.particle_i.transverse;
+  const Eigen::Vector2d& b = e.particle_j.transverse;
+  e.position_i = gi.r + a.x() * gi.g1 + a.y() * gi.g2;
+  e.position_j = gj.r + b.x() * gj.g1 + b.y() * gj.g2;
+  e.gap = (e.position_j - e.position_i).dot(e.normal);
+  return true;
 }
 
 ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,

@@ -94,4 +94,8 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
                         double zeta, ContactElement& out);
 
+/// Recomputes, in state `x`, the normal of contact element `e` for its particles as they are (Eq. 41-44; the
+/// fixed point on normal directions of Sect. 6), with its positions and gap. False if it is undefined.
+bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e);
+
 }  // namespace nodus::contact

@@ -122,10 +122,10 @@ constexpr std::array kKeys{
          "minimum interval between progress lines on stderr"},
 
   KeyDoc{"contact", "map", "", "-", "",
-         "contact detection between the beams (docs/contact.md); absent: no contact, present (even empty): "
-         "on. The lengths are the paper's delta_prox, delta_separ, h_dist, l_p, h_c (Durville 2012, "
-         "Eq. 24-48); auto ones are derived when the run starts, with R the largest radius of the contact "
-         "beams"},
+         "contact detection and contact forces between the beams (docs/contact.md); absent: no contact, "
+         "present (even empty): on. The detection lengths are the paper's delta_prox, delta_separ, h_dist, "
+         "l_p, h_c (Durville 2012, Eq. 24-48); auto ones are derived when the run starts, with R the "
+         "largest radius of the contact beams"},
   KeyDoc{"contact.enabled", "bool", "", "true", "", "false: contact is off although the section is present"},
   KeyDoc{"contact.self_contact", "bool", "", "true", "",
          "also detect contact between separate parts of one beam"},
@@ -145,6 +145,30 @@ constexpr std::array kKeys{
   KeyDoc{"contact.element_spacing", "number", "mm", "auto", "> 0 or auto",
          "h_c: spacing of the contact elements along a proximity zone. auto: h / 2, h the smaller element "
          "length of the zone's two beams"},
+  KeyDoc{"contact.forces", "bool", "", "true", "",
+         "apply contact forces (Durville 2012, Sect. 5); false: detect and write out only"},
+  KeyDoc{"contact.penalty", "number", "N/mm", "auto", "> 0 or auto",
+         "initial penalty coefficient k_c of every proximity zone (Eq. 53), then adjusted per zone so that "
+         "the largest penetration approaches max_penetration (Eq. 54). auto: E R, with E the smallest "
+         "Young's modulus and R the smallest radius of the contact beams"},
+  KeyDoc{"contact.max_penetration", "number", "mm", "auto", "> 0 or auto",
+         "p_max, the penetration the per-zone penalty adjustment aims at (Eq. 54). auto: 0.02 R (R the "
+         "smallest radius)"},
+  KeyDoc{"contact.regularization", "number", "mm", "auto", "> 0 or auto",
+         "p_reg, the depth of the quadratic start of the penalty law (Eq. 53). auto: max_penetration / 10"},
+  KeyDoc{"contact.friction", "number", "", "0", ">= 0",
+         "Coulomb friction coefficient mu (Eq. 55-64); 0: frictionless"},
+  KeyDoc{"contact.max_reversible_slip", "number", "mm", "auto", "> 0 or auto",
+         "g_rev_max, the tangential displacement taken reversibly before sliding (regularised Coulomb law). "
+         "auto: max_penetration / 2"},
+  KeyDoc{"contact.max_detections", "integer", "", "4", ">= 1",
+         "loop 2 of the global algorithm (Sect. 6): at most this many detections of the contact elements "
+         "per load step"},
+  KeyDoc{"contact.max_normal_iterations", "integer", "", "6", ">= 1",
+         "loop 3: at most this many updates of the normal directions and penalties per detection"},
+  KeyDoc{"contact.normal_tolerance", "number", "rad", "0.001", "> 0",
+         "loop 3 stops when no normal turns by more than this and every zone's penetration is within 20 % "
+         "of max_penetration (or none)"},
 };
 // clang-format on
 

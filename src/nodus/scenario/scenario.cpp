@@ -784,8 +784,8 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
     }
   }
 
-  // A length is > 0, or auto (absent, or the word auto), which leaves it at 0. Returns the field of an
-  // explicit value.
+  // A length (or the penalty) is > 0, or auto (absent, or the word auto), which leaves it at 0. Returns the
+  // field of an explicit value.
   const auto length = [&](std::string_view key, double& out) -> std::optional<Field> {
     const auto value = map.get(key);
     if (!value || (is_plain_scalar(value->node) && value->node.Scalar() == "auto")) return std::nullopt;
@@ -802,6 +802,26 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
   }
   if (proximity && separation && contact.separation_distance <= contact.proximity_distance) {
     reader.fail(*separation, "> proximity_distance (neighbouring parts of a beam would be paired)");
+  }
+
+  // Contact mechanics (Sect. 5-6).
+  if (const auto value = map.get("forces")) contact.forces = reader.boolean(*value);
+  length("penalty", contact.penalty);
+  length("max_penetration", contact.max_penetration);
+  length("regularization", contact.regularization);
+  if (const auto value = map.get("friction")) {
+    contact.friction = reader.number(*value, [](double v) { return v >= 0.0; });
+  }
+  length("max_reversible_slip", contact.max_reversible_slip);
+  const auto at_least_one = [](int v) { return v >= 1; };
+  if (const auto value = map.get("max_detections")) {
+    contact.max_detections = reader.integer(*value, at_least_one);
+  }
+  if (const auto value = map.get("max_normal_iterations")) {
+    contact.max_normal_iterations = reader.integer(*value, at_least_one);
+  }
+  if (const auto value = map.get("normal_tolerance")) {
+    contact.normal_tolerance = reader.number(*value, [](double v) { return v > 0.0; });
   }
   return contact;
 }
@@ -1032,14 +1052,23 @@ std::string describe(const Scenario& scenario) {
     }
     line(fmt::format("  beams: {}]", beams));
   }
-  const auto length = [&line](std::string_view key, double value) {
-    line(fmt::format("  {}: {}  # mm", key, value > 0.0 ? format_number(value) : std::string("auto")));
+  const auto or_auto = [&line](std::string_view key, double value, std::string_view unit) {
+    line(fmt::format("  {}: {}  # {}", key, value > 0.0 ? format_number(value) : std::string("auto"), unit));
   };
-  length("proximity_distance", contact.proximity_distance);
-  length("separation_distance", contact.separation_distance);
-  length("test_point_spacing", contact.test_point_spacing);
-  length("matching_length", contact.matching_length);
-  length("element_spacing", contact.element_spacing);
+  or_auto("proximity_distance", contact.proximity_distance, "mm");
+  or_auto("separation_distance", contact.separation_distance, "mm");
+  or_auto("test_point_spacing", contact.test_point_spacing, "mm");
+  or_auto("matching_length", contact.matching_length, "mm");
+  or_auto("element_spacing", contact.element_spacing, "mm");
+  line(fmt::format("  forces: {}", contact.forces ? "true" : "false"));
+  or_auto("penalty", contact.penalty, "N/mm");
+  or_auto("max_penetration", contact.max_penetration, "mm");
+  or_auto("regularization", contact.regularization, "mm");
+  line(fmt::format("  friction: {}", format_number(contact.friction)));
+  or_auto("max_reversible_slip", contact.max_reversible_slip, "mm");
+  line(fmt::format("  max_detections: {}", contact.max_detections));
+  line(fmt::format("  max_normal_iterations: {}", contact.max_normal_iterations));
+  line(fmt::format("  normal_tolerance: {}  # rad", format_number(contact.normal_tolerance)));
   return out;
 }
 

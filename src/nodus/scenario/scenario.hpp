@@ -123,6 +123,16 @@ struct ContactSettings {
   double test_point_spacing = 0.0;   ///< h_dist [mm], auto if <= 0
   double matching_length = 0.0;      ///< l_p [mm], auto if <= 0
   double element_spacing = 0.0;      ///< h_c [mm], auto if <= 0
+  // Contact mechanics (Sect. 5-6).
+  bool forces = true;                ///< apply contact forces; false: detection only
+  double penalty = 0.0;              ///< initial k_c per zone [N/mm], auto if <= 0
+  double max_penetration = 0.0;      ///< p_max [mm], auto if <= 0
+  double regularization = 0.0;       ///< p_reg [mm], auto if <= 0
+  double friction = 0.0;             ///< mu [-], >= 0
+  double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
+  int max_detections = 4;            ///< loop 2: detections of contact elements per step, >= 1
+  int max_normal_iterations = 6;     ///< loop 3: updates of the normals per detection, >= 1
+  double normal_tolerance = 1e-3;    ///< loop 3 stops when no normal turns by more than this [rad], > 0
 };
 
 struct Scenario {

@@ -1,6 +1,7 @@
 #include "nodus/simulation/equilibrium_problem.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <limits>
 
@@ -28,7 +29,47 @@ EquilibriumProblem::EquilibriumProblem(const model::Model& model, loading::Condi
   const double extent = std::max(length_scale_, x_.lpNorm<Eigen::Infinity>());
   force_floor_ = 10.0 * std::numeric_limits<double>::epsilon() * stiffest * (extent / shortest) *
                  std::sqrt(static_cast<double>(model_.num_dofs()));
+  element_nodes_ = model_.element_nodes();
   update_free_set();
+}
+
+void EquilibriumProblem::set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
+                                     std::vector<Eigen::Vector3d> reversible) {
+  contact_ = std::move(geometry);
+  penalty_ = std::move(penalty);
+  reversible_committed_ = std::move(reversible);
+  contact_states_.assign(contact_.elements.size(), ContactState{});
+  rebuild_pattern();
+}
+
+void EquilibriumProblem::set_contact_laws(double regularization,
+                                          std::optional<contact::FrictionLaw> friction) {
+  regularization_ = regularization;
+  friction_ = friction;
+}
+
+void EquilibriumProblem::add_contact(solver::SparseAssembler* assembler) {
+  std::array<int, 6> blocks{};
+  for (std::size_t k = 0; k < contact_.elements.size(); ++k) {
+    const contact::ContactElement& e = contact_.elements[k];
+    const int ei = e.particle_i.element, ej = e.particle_j.element;
+    const contact::NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
+    const contact::ContactResponse r = contact::contact_response(
+        e, model_.gather(x_, ei), model_.gather(x_, ej), model_.gather(x_committed_, ei),
+        model_.gather(x_committed_, ej), law, friction_ ? &*friction_ : nullptr, reversible_committed_[k]);
+    contact_states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
+    const std::vector<int>& ni = element_nodes_[static_cast<std::size_t>(ei)];
+    const std::vector<int>& nj = element_nodes_[static_cast<std::size_t>(ej)];
+    for (int a = 0; a < 3; ++a) {
+      blocks[static_cast<std::size_t>(a)] = ni[static_cast<std::size_t>(a)];
+      blocks[static_cast<std::size_t>(a + 3)] = nj[static_cast<std::size_t>(a)];
+    }
+    for (int b = 0; b < 6; ++b)
+      residual_full_.segment<model::kDofsPerNode>(model::kDofsPerNode *
+                                                  blocks[static_cast<std::size_t>(b)]) +=
+          r.force.segment<model::kDofsPerNode>(model::kDofsPerNode * b);
+    if (assembler) assembler->add(blocks, r.tangent);
+  }
 }
 
 void EquilibriumProblem::update_free_set() {
@@ -40,8 +81,19 @@ void EquilibriumProblem::update_free_set() {
       free_index[static_cast<std::size_t>(i)] = static_cast<int>(free_dofs_.size());
       free_dofs_.push_back(i);
     }
-  assembler_ = std::make_unique<solver::SparseAssembler>(model::kDofsPerNode, std::move(free_index),
-                                                         model_.element_nodes());
+  free_index_ = std::move(free_index);
+  rebuild_pattern();
+}
+
+void EquilibriumProblem::rebuild_pattern() {
+  std::vector<std::vector<int>> groups = element_nodes_;
+  for (const contact::ContactElement& e : contact_.elements) {
+    std::vector<int> g = element_nodes_[static_cast<std::size_t>(e.particle_i.element)];
+    const std::vector<int>& nj = element_nodes_[static_cast<std::size_t>(e.particle_j.element)];
+    g.insert(g.end(), nj.begin(), nj.end());
+    groups.push_back(std::move(g));
+  }
+  assembler_ = std::make_unique<solver::SparseAssembler>(model::kDofsPerNode, free_index_, groups);
 }
 
 Eigen::VectorXd EquilibriumProblem::unknowns() const {
@@ -60,6 +112,9 @@ void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) 
   conditions_.external_force(time_, x_, f_ext_);
   if (with_tangent) conditions_.add_load_tangent(time_, x_, *assembler_);
   residual_full_ = f_int_ - f_ext_;
+  if (!contact_.elements.empty()) {
+    add_contact(with_tangent ? assembler_.get() : nullptr);
+  }
   residual.resize(size());
   for (int i = 0; i < size(); ++i) residual[i] = residual_full_[free_dofs_[static_cast<std::size_t>(i)]];
   // Force scale: the applied loads and the support reactions.
@@ -85,6 +140,12 @@ void EquilibriumProblem::set_time(double t) {
 }
 
 void EquilibriumProblem::commit() {
+  if (!contact_.elements.empty()) {
+    Eigen::VectorXd residual;
+    evaluate(residual, false);  // the contact states of the converged state
+    for (std::size_t k = 0; k < contact_states_.size(); ++k)
+      reversible_committed_[k] = contact_states_[k].reversible;
+  }
   x_committed_ = x_;
   time_committed_ = time_;
   conditions_.commit(x_);

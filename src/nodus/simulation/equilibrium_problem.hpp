@@ -3,10 +3,13 @@
 /// residual R = f_int - f_ext over the free unknowns, and its tangent. Prescribed unknowns are eliminated.
 
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include <Eigen/Core>
 
+#include "nodus/contact/contact_mechanics.hpp"
+#include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/solver/load_stepping.hpp"
@@ -17,6 +20,15 @@ namespace nodus::simulation {
 struct Tolerances {
   double residual = 1e-8;   ///< |R| <= residual * force scale
   double increment = 1e-6;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
+};
+
+/// The state of one contact element at the last evaluation.
+struct ContactState {
+  double gap = 0.0;                                      ///< [mm]
+  double normal_reaction = 0.0;                          ///< R_N [N]
+  Eigen::Vector3d tangential = Eigen::Vector3d::Zero();  ///< friction force on J [N]
+  Eigen::Vector3d reversible = Eigen::Vector3d::Zero();  ///< g_rev [mm]
+  bool slip = false;
 };
 
 class EquilibriumProblem final : public solver::SteppedProblem {
@@ -48,6 +60,21 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   /// f_int - f_ext over all unknowns at the last evaluation (reactions at the prescribed ones).
   const Eigen::VectorXd& full_residual() const { return residual_full_; }
 
+  // Contact (Sect. 5): the contact elements, their normals and particles fixed during Newton.
+  /// Replaces the contact elements; `penalty` per zone [N/mm], `reversible` per element (committed g_rev).
+  /// Rebuilds the sparse pattern (the solver must re-analyse it).
+  void set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
+                   std::vector<Eigen::Vector3d> reversible);
+  /// The laws: p_reg of the normal law, and friction (null: none).
+  void set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction);
+  contact::ContactGeometry& contact_geometry() { return contact_; }
+  const contact::ContactGeometry& contact_geometry() const { return contact_; }
+  std::vector<double>& zone_penalty() { return penalty_; }
+  /// Committed g_rev per contact element.
+  const std::vector<Eigen::Vector3d>& reversible_committed() const { return reversible_committed_; }
+  /// Per contact element, at the last evaluation.
+  const std::vector<ContactState>& contact_states() const { return contact_states_; }
+
  private:
   const model::Model& model_;
   loading::Conditions& conditions_;
@@ -57,10 +84,22 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   Eigen::VectorXd x_, x_committed_;
   double time_ = 0.0, time_committed_ = 0.0;
   std::vector<int> free_dofs_;
+  std::vector<int> free_index_;  ///< per unknown: its row among the free ones, or -1
   std::vector<bool> prescribed_;
   std::unique_ptr<solver::SparseAssembler> assembler_;
   Eigen::VectorXd f_int_, f_ext_, residual_full_;
   double residual_tolerance_ = 0.0;
+  std::vector<std::vector<int>> element_nodes_;
+  contact::ContactGeometry contact_;
+  std::vector<double> penalty_;
+  std::vector<Eigen::Vector3d> reversible_committed_;
+  std::vector<ContactState> contact_states_;
+  double regularization_ = 0.0;
+  std::optional<contact::FrictionLaw> friction_;
+
+  void rebuild_pattern();
+  /// Adds the contact forces to residual_full_ and, if `assembler`, their tangent.
+  void add_contact(solver::SparseAssembler* assembler);
 };
 
 }  // namespace nodus::simulation

@@ -1,7 +1,10 @@
 #include "nodus/simulation/simulation.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <numbers>
+#include <optional>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -93,6 +96,30 @@ contact::DetectionParameters resolve_detection(const scenario::Scenario& s, cons
   }
 }
 
+/// The contact laws with their defaults resolved (docs/contact.md): R and E the smallest radius and Young's
+/// modulus of the contact beams.
+ContactLawSettings resolve_laws(const scenario::Scenario& s) {
+  const scenario::ContactSettings& c = s.contact;
+  double radius = INFINITY, young = INFINITY;
+  for (int b = 0; b < static_cast<int>(s.beams.size()); ++b) {
+    if (!c.beams.empty() && std::find(c.beams.begin(), c.beams.end(), b) == c.beams.end()) continue;
+    const scenario::BeamSpec& beam = s.beams[static_cast<std::size_t>(b)];
+    radius = std::min(radius, beam.radius);
+    young = std::min(young, s.materials[static_cast<std::size_t>(beam.material)].young_modulus);
+  }
+  ContactLawSettings laws;
+  laws.max_penetration = c.max_penetration > 0.0 ? c.max_penetration : 0.02 * radius;
+  laws.regularization = c.regularization > 0.0 ? c.regularization : 0.1 * laws.max_penetration;
+  laws.penalty = c.penalty > 0.0 ? c.penalty : young * radius;
+  if (c.friction > 0.0)
+    laws.friction = contact::FrictionLaw{
+        c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
+  laws.max_detections = c.max_detections;
+  laws.max_normal_iterations = c.max_normal_iterations;
+  laws.normal_tolerance = c.normal_tolerance;
+  return laws;
+}
+
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind) {
   return kind == scenario::LinearSolverKind::umfpack ? solver::LinearSolverKind::umfpack
                                                      : solver::LinearSolverKind::cholmod;
@@ -114,6 +141,8 @@ Simulation::Simulation(scenario::Scenario scenario)
   if (scenario_.contact.enabled) {
     contact_enabled_ = true;
     detection_ = resolve_detection(scenario_, model_);
+    contact_forces_ = scenario_.contact.forces;
+    laws_ = resolve_laws(scenario_);
     detect_contact();
   }
 }
@@ -126,6 +155,10 @@ void Simulation::detect_contact() {
 }
 
 Simulation::~Simulation() = default;
+
+const std::vector<ContactState>& Simulation::contact_states() const {
+  return problem_->contact_states();
+}
 
 const Eigen::VectorXd& Simulation::state() const {
   return problem_->committed_state();
@@ -143,6 +176,12 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   auto linear = solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver));
   solver::NewtonSolver newton(*linear,
                               {scenario_.solver.max_newton_iterations, scenario_.solver.line_search});
+  std::optional<ContactLoops> loops;
+  if (contact_enabled_ && contact_forces_)
+    loops.emplace(model_, *problem_, newton, detection_, scenario_.contact.beams, laws_);
+  const solver::StepSolver solve_step = [&](solver::SteppedProblem& p) {
+    return loops ? loops->solve() : newton.solve(p);
+  };
   for (StepObserver* o : observers) o->on_start(*this);
 
   for (int s = 0; s < static_cast<int>(scenario_.stages.size()); ++s) {
@@ -187,7 +226,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
     solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
                                 scenario_.solver.easy_iterations};
     const solver::AdvanceResult result =
-        solver::advance(*problem_, newton, t0, t1, control, [&](const solver::StepResult& r) {
+        solver::advance(*problem_, solve_step, t0, t1, control, [&](const solver::StepResult& r) {
           time_ = r.time;
           StepRecord record;
           record.step = ++summary.steps;
@@ -198,7 +237,17 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
           record.residual = r.newton.residual;
           record.increment = r.newton.increment;
           summary.newton_iterations += r.newton.iterations;
-          detect_contact();
+          if (loops) {
+            contact_ = problem_->contact_geometry();
+            const ContactStepStats& c = loops->stats();
+            record.detections = c.detections;
+            record.normal_iterations = c.normal_iterations;
+            record.penetration_ratio = c.penetration_ratio;
+            record.normal_force = c.normal_force;
+            record.tangential_force = c.tangential_force;
+          } else {
+            detect_contact();
+          }
           record.zones = static_cast<int>(contact_.zones.size());
           record.contact_elements = static_cast<int>(contact_.elements.size());
           for (int c = 0; c < conditions_.size(); ++c)
@@ -213,7 +262,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   }
   summary.converged = summary.failure.empty();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  summary.detection_seconds = detection_seconds_;
+  summary.detection_seconds = detection_seconds_ + (loops ? loops->detection_seconds() : 0.0);
   for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;
 }

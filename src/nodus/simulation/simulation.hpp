@@ -13,6 +13,7 @@
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/scenario/scenario.hpp"
+#include "nodus/simulation/contact_loops.hpp"
 
 namespace nodus::simulation {
 
@@ -30,6 +31,11 @@ struct StepRecord {
   std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)
   int zones = 0;                                ///< proximity zones detected in the converged state
   int contact_elements = 0;                     ///< contact elements along them
+  int detections = 0;                           ///< contact loop 2 iterations (0 without contact forces)
+  int normal_iterations = 0;                    ///< contact loop 3 iterations
+  double penetration_ratio = 0.0;               ///< largest penetration / p_max
+  double normal_force = 0.0;                    ///< sum of the normal reactions [N]
+  double tangential_force = 0.0;                ///< sum of the friction force magnitudes [N]
 };
 
 struct RunSummary {
@@ -66,6 +72,11 @@ class Simulation {
   const Eigen::VectorXd& state() const;
   /// The contact geometry detected in the last converged state; null when the scenario has no contact.
   const contact::ContactGeometry* contact() const { return contact_enabled_ ? &contact_ : nullptr; }
+  /// The contact laws, defaults resolved (meaningful when contact forces are on).
+  const ContactLawSettings& contact_laws() const { return laws_; }
+  bool contact_forces() const { return contact_forces_; }
+  /// The state of each element of contact() at the end of the last step (empty without contact forces).
+  const std::vector<ContactState>& contact_states() const;
   /// The detection parameters, defaults resolved (meaningful when contact() is not null).
   const contact::DetectionParameters& detection_parameters() const { return detection_; }
   /// Load time of the last converged state [s].
@@ -86,6 +97,8 @@ class Simulation {
   contact::DetectionParameters detection_;
   contact::ContactGeometry contact_;
   double detection_seconds_ = 0.0;
+  bool contact_forces_ = false;
+  ContactLawSettings laws_;
 
   /// Detects contact in the committed state (when the scenario has contact).
   void detect_contact();

@@ -10,6 +10,12 @@ namespace nodus::solver {
 
 AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, double t1,
                       const StepControl& control, const std::function<void(const StepResult&)>& on_step) {
+  return advance(
+      problem, [&newton](SteppedProblem& p) { return newton.solve(p); }, t0, t1, control, on_step);
+}
+
+AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t0, double t1,
+                      const StepControl& control, const std::function<void(const StepResult&)>& on_step) {
   AdvanceResult result;
   const double span = t1 - t0;
   const double eps = 1e-12 * std::max(1.0, std::abs(t1));
@@ -25,7 +31,7 @@ AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, 
     if (previous.size() == start.size() && previous_step > 0)
       problem.set_unknowns(start + (step / previous_step) * (start - previous));
     problem.set_time(t + step);
-    NewtonReport report = newton.solve(problem);
+    NewtonReport report = solve(problem);
     if (!report.converged) {
       problem.restore();
       if (cutbacks >= control.max_cutbacks) {

@@ -41,7 +41,15 @@ struct AdvanceResult {
   std::string failure;
 };
 
+/// Solves one step from the problem's current unknowns at its current time (Newton, possibly inside outer
+/// fixed-point loops); the report's iterations count every Newton iteration.
+using StepSolver = std::function<NewtonReport(SteppedProblem&)>;
+
 /// Advances from t0 to t1. After each converged step the problem is committed and `on_step` is called.
+AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t0, double t1,
+                      const StepControl& control, const std::function<void(const StepResult&)>& on_step);
+
+/// Same, each step solved by `newton` alone.
 AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, double t1,
                       const StepControl& control, const std::function<void(const StepResult&)>& on_step);
 

@@ -1,0 +1,204 @@
+#include "nodus/simulation/contact_loops.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <utility>
+
+#include <spdlog/spdlog.h>
+
+namespace nodus::simulation {
+namespace {
+
+/// Reversible displacements stored at the particles' abscissas on each beam, per pair of beams and side
+/// (Sect. 5.2.3): key (beam_i, beam_j, side), values (abscissa, g_rev) sorted by abscissa.
+using HistoryKey = std::tuple<int, int, int>;
+using History = std::map<HistoryKey, std::vector<std::pair<double, Eigen::Vector3d>>>;
+
+/// Linear interpolation between the stored neighbours of s; nothing outside the stored range.
+std::optional<Eigen::Vector3d> interpolate(const std::vector<std::pair<double, Eigen::Vector3d>>& points,
+                                           double s) {
+  if (points.empty() || s < points.front().first || s > points.back().first) return std::nullopt;
+  const auto upper =
+      std::lower_bound(points.begin(), points.end(), s, [](const auto& p, double v) { return p.first < v; });
+  if (upper == points.begin()) return upper->second;
+  const auto lower = std::prev(upper);
+  const double span = upper->first - lower->first;
+  if (!(span > 0.0)) return lower->second;
+  const double w = (s - lower->first) / span;
+  return (1.0 - w) * lower->second + w * upper->second;
+}
+
+double overlap(double a0, double a1, double b0, double b1) {
+  return std::max(
+      0.0, std::min(std::max(a0, a1), std::max(b0, b1)) - std::max(std::min(a0, a1), std::min(b0, b1)));
+}
+
+}  // namespace
+
+ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& problem,
+                           solver::NewtonSolver& newton, contact::DetectionParameters detection,
+                           std::vector<int> beams, ContactLawSettings laws)
+    : model_(model),
+      problem_(problem),
+      newton_(newton),
+      detection_(detection),
+      beams_(std::move(beams)),
+      laws_(laws) {
+  problem_.set_contact_laws(laws_.regularization, laws_.friction);
+}
+
+void ContactLoops::redetect() {
+  const auto start = std::chrono::steady_clock::now();
+  contact::ContactGeometry next = contact::detect(model_, problem_.state(), detection_, beams_);
+  detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+
+  const contact::ContactGeometry& old = problem_.contact_geometry();
+  const std::vector<double>& old_penalty = problem_.zone_penalty();
+  // Penalty of a new zone: that of the old zone of the same pair of beams that overlaps it most.
+  std::vector<double> penalty(next.zones.size(), laws_.penalty);
+  for (std::size_t z = 0; z < next.zones.size(); ++z) {
+    const contact::ProximityZone& n = next.zones[z];
+    double best = 0.0;
+    for (std::size_t o = 0; o < old.zones.size(); ++o) {
+      const contact::ProximityZone& p = old.zones[o];
+      if (p.beam_i != n.beam_i || p.beam_j != n.beam_j) continue;
+      const double common = overlap(n.a, n.b, p.a, p.b) * overlap(n.c, n.d, p.c, p.d);
+      if (common > best) {
+        best = common;
+        penalty[z] = old_penalty[o];
+      }
+    }
+  }
+  // History: committed g_rev stored on both particles' abscissas; a new element takes the mean of the values
+  // interpolated at its two particles.
+  History history;
+  const std::vector<Eigen::Vector3d>& old_reversible = problem_.reversible_committed();
+  for (std::size_t k = 0; k < old.elements.size(); ++k) {
+    const contact::ContactElement& e = old.elements[k];
+    const contact::ProximityZone& z = old.zones[static_cast<std::size_t>(e.zone)];
+    history[{z.beam_i, z.beam_j, 0}].emplace_back(e.particle_i.abscissa, old_reversible[k]);
+    history[{z.beam_i, z.beam_j, 1}].emplace_back(e.particle_j.abscissa, old_reversible[k]);
+  }
+  for (auto& [key, points] : history)
+    std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
+  std::vector<Eigen::Vector3d> reversible(next.elements.size(), Eigen::Vector3d::Zero());
+  for (std::size_t k = 0; k < next.elements.size(); ++k) {
+    const contact::ContactElement& e = next.elements[k];
+    const contact::ProximityZone& z = next.zones[static_cast<std::size_t>(e.zone)];
+    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
+    int count = 0;
+    for (int side = 0; side < 2; ++side) {
+      const auto it = history.find({z.beam_i, z.beam_j, side});
+      if (it == history.end()) continue;
+      const auto value = interpolate(it->second, side == 0 ? e.particle_i.abscissa : e.particle_j.abscissa);
+      if (value) {
+        sum += *value;
+        ++count;
+      }
+    }
+    if (count > 0) reversible[k] = sum / count;
+  }
+  problem_.set_contact(std::move(next), std::move(penalty), std::move(reversible));
+  newton_.reanalyze();
+}
+
+double ContactLoops::update_normals() {
+  double turn = 0.0;
+  for (contact::ContactElement& e : problem_.contact_geometry().elements) {
+    const Eigen::Vector3d before = e.normal;
+    if (contact::update_normal(model_, problem_.state(), e))
+      turn = std::max(turn, std::atan2(before.cross(e.normal).norm(), before.dot(e.normal)));
+  }
+  return turn;
+}
+
+bool ContactLoops::adjust_penalties() {
+  const contact::ContactGeometry& g = problem_.contact_geometry();
+  std::vector<double>& penalty = problem_.zone_penalty();
+  const contact::NormalLaw unit{1.0, laws_.regularization};
+  // Aim at 3/4 of p_max; a zone whose penetration lies in [p_max / 2, p_max] is left as it is.
+  const double aim = 0.75 * laws_.max_penetration;
+  const double target = contact::normal_reaction(unit, -aim);
+  bool off = false;
+  for (std::size_t z = 0; z < g.zones.size(); ++z) {
+    const contact::ProximityZone& zone = g.zones[z];
+    double penetration = 0.0;
+    for (int k = zone.first_element; k < zone.first_element + zone.num_elements; ++k)
+      penetration = std::max(penetration, -g.elements[static_cast<std::size_t>(k)].gap);
+    if (!(penetration > 0.0)) continue;
+    if (penetration >= 0.5 * laws_.max_penetration && penetration <= laws_.max_penetration) continue;
+    off = true;
+    // Eq. 54, in the direction that makes the penetration approach the aim: the new coefficient gives at the
+    // aim the reaction the old one gives at the penetration reached (the law is linear in k_c).
+    const double factor = std::clamp(contact::normal_reaction(unit, -penetration) / target, 0.1, 10.0);
+    penalty[z] *= factor;
+  }
+  return off;
+}
+
+void ContactLoops::collect_stats() {
+  const std::vector<ContactState>& states = problem_.contact_states();
+  stats_.normal_force = stats_.tangential_force = stats_.penetration_ratio = 0.0;
+  stats_.slipping = 0;
+  for (const ContactState& s : states) {
+    stats_.normal_force += s.normal_reaction;
+    stats_.tangential_force += s.tangential.norm();
+    stats_.penetration_ratio = std::max(stats_.penetration_ratio, -s.gap / laws_.max_penetration);
+    if (s.slip) ++stats_.slipping;
+  }
+}
+
+solver::NewtonReport ContactLoops::solve() {
+  stats_ = ContactStepStats{};
+  solver::NewtonReport total;
+  redetect();
+  stats_.detections = 1;
+  for (;;) {
+    for (int m = 1;; ++m) {  // loop 3
+      const solver::NewtonReport r = newton_.solve(problem_);
+      total.iterations += r.iterations;
+      total.residual = r.residual;
+      total.increment = r.increment;
+      ++stats_.normal_iterations;
+      if (!r.converged) {
+        total.failure = r.failure;
+        return total;
+      }
+      if (m >= laws_.max_normal_iterations) break;  // keep the normals and penalties Newton converged with
+      const contact::ContactGeometry kept = problem_.contact_geometry();
+      const std::vector<double> kept_penalty = problem_.zone_penalty();
+      const double turn = update_normals();
+      const bool off = adjust_penalties();
+      if (turn <= laws_.normal_tolerance && !off) {
+        problem_.contact_geometry() = kept;  // converged: the state is the equilibrium of these
+        problem_.zone_penalty() = kept_penalty;
+        break;
+      }
+      spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
+                    off ? ", penalties adjusted" : "");
+    }
+    if (stats_.detections >= laws_.max_detections) break;
+    // Loop 2: a new detection in the converged state; done when it finds the same contact elements.
+    const contact::ContactGeometry& current = problem_.contact_geometry();
+    const contact::ContactGeometry probe = contact::detect(model_, problem_.state(), detection_, beams_);
+    bool same =
+        probe.elements.size() == current.elements.size() && probe.zones.size() == current.zones.size();
+    for (std::size_t k = 0; same && k < probe.elements.size(); ++k) {
+      const double h = 0.1 * model_.beam(probe.elements[k].particle_i.beam).element_length();
+      same = std::abs(probe.elements[k].particle_i.abscissa - current.elements[k].particle_i.abscissa) <= h &&
+             std::abs(probe.elements[k].particle_j.abscissa - current.elements[k].particle_j.abscissa) <= h;
+    }
+    if (same) break;
+    redetect();
+    ++stats_.detections;
+  }
+  Eigen::VectorXd residual;
+  problem_.evaluate(residual, false);
+  collect_stats();
+  total.converged = true;
+  return total;
+}
+
+}  // namespace nodus::simulation

@@ -1,0 +1,72 @@
+#pragma once
+/// The contact loops of the global algorithm [Durville 2012, Sect. 6] around Newton, for one load step:
+///
+///     loop 2  determination of the contact elements (detection, fixed point on the set of elements)
+///       loop 3  determination of the normal directions (fixed point), with the penalty adjusted per zone
+///         Newton-Raphson with the contact elements, their particles and normals fixed
+///
+/// Between detections the reversible tangential displacements and the penalty coefficients are carried from
+/// the old contact elements and zones to the new ones (Sect. 5.2.3).
+
+#include <optional>
+#include <vector>
+
+#include "nodus/contact/contact_mechanics.hpp"
+#include "nodus/contact/detection.hpp"
+#include "nodus/model/model.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/solver/newton.hpp"
+
+namespace nodus::simulation {
+
+struct ContactLawSettings {
+  double penalty = 0.0;          ///< initial k_c of a new zone [N/mm]
+  double max_penetration = 0.0;  ///< p_max [mm]
+  double regularization = 0.0;   ///< p_reg [mm]
+  std::optional<contact::FrictionLaw> friction;
+  int max_detections = 4;
+  int max_normal_iterations = 6;
+  double normal_tolerance = 1e-3;  ///< [rad]
+};
+
+/// What the loops did in the last step, and the contact forces at its end.
+struct ContactStepStats {
+  int detections = 0;              ///< loop 2 iterations
+  int normal_iterations = 0;       ///< loop 3 iterations, summed over the detections
+  double penetration_ratio = 0.0;  ///< largest penetration / p_max over all zones
+  double normal_force = 0.0;       ///< sum of R_N over the contact elements [N]
+  double tangential_force = 0.0;   ///< sum of |R_T| [N]
+  int slipping = 0;                ///< contact elements sliding
+};
+
+class ContactLoops {
+ public:
+  ContactLoops(const model::Model& model, EquilibriumProblem& problem, solver::NewtonSolver& newton,
+               contact::DetectionParameters detection, std::vector<int> beams, ContactLawSettings laws);
+
+  /// Solves the current load step of `problem_` from its current unknowns.
+  solver::NewtonReport solve();
+  const ContactStepStats& stats() const { return stats_; }
+  double detection_seconds() const { return detection_seconds_; }
+
+ private:
+  /// New contact elements from a detection in the current state, with penalties and history carried over.
+  void redetect();
+  /// Updates the normals in the current state; returns the largest turn [rad].
+  double update_normals();
+  /// Adjusts the penalty of each zone whose largest penetration is outside [p_max / 2, p_max] so that it
+  /// approaches 3/4 p_max (Eq. 54); returns true if it adjusted one.
+  bool adjust_penalties();
+  void collect_stats();
+
+  const model::Model& model_;
+  EquilibriumProblem& problem_;
+  solver::NewtonSolver& newton_;
+  contact::DetectionParameters detection_;
+  std::vector<int> beams_;
+  ContactLawSettings laws_;
+  ContactStepStats stats_;
+  double detection_seconds_ = 0.0;
+};
+
+}  // namespace nodus::simulation
