@@ -48,8 +48,8 @@ struct FrictionResponse {
 /// Return mapping (Eq. 59-64): trial g_tr = g_rev_n + (I - n n) du, with du the increment of the relative
 /// displacement of the two particles since the committed state and g_rev_n the committed reversible
 /// displacement (projected on the plane normal to n); stick if |g_tr| <= g_rev_max, else slip with
-/// g_rev = g_rev_max g_tr / |g_tr|. The force on J is -mu R_N g_rev / g_rev_max. With mu = 0 or R_N = 0,
-/// no force and g_rev = g_tr is kept (so that history follows the particles while they are apart).
+/// g_rev = g_rev_max g_tr / |g_tr|. The force on J is -mu R_N g_rev / g_rev_max. With mu = 0 or R_N = 0
+/// (surfaces apart): no force, and g_rev = 0 (no memory of an earlier contact).
 FrictionResponse friction_response(const FrictionLaw& law, double normal_reaction, const Eigen::Vector3d& n,
                                    const Eigen::Vector3d& reversible_committed, const Eigen::Vector3d& du);
 
