@@ -58,11 +58,11 @@ ParticleMap particle_map(const Particle& p);
 
 /// The state of a contact element after evaluation.
 struct ContactResponse {
-  double gap = 0.0;                                  ///< [mm]
-  double normal_reaction = 0.0;                      ///< R_N [N]
-  FrictionResponse friction;                         ///< tangential part (zero without friction)
-  PairVector force = PairVector::Zero();             ///< contribution to f_int - f_ext, unknowns (q_I, q_J)
-  PairMatrix tangent = PairMatrix::Zero();           ///< its derivative (normal and particles fixed)
+  double gap = 0.0;                         ///< [mm]
+  double normal_reaction = 0.0;             ///< R_N [N]
+  FrictionResponse friction;                ///< tangential part (zero without friction)
+  PairVector force = PairVector::Zero();    ///< contribution to f_int - f_ext, unknowns (q_I, q_J)
+  PairMatrix tangent = PairMatrix::Zero();  ///< its derivative (normal and particles fixed)
 };
 
 /// Evaluates the contact element `e` (particles and normal fixed) for the element unknowns q_i, q_j (current)

@@ -49,11 +49,14 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
   problem_.set_contact_laws(laws_.regularization, laws_.friction);
 }
 
-void ContactLoops::redetect() {
+contact::ContactGeometry ContactLoops::detect() {
   const auto start = std::chrono::steady_clock::now();
-  contact::ContactGeometry next = contact::detect(model_, problem_.state(), detection_, beams_);
+  contact::ContactGeometry g = contact::detect(model_, problem_.state(), detection_, beams_);
   detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return g;
+}
 
+void ContactLoops::install(contact::ContactGeometry next) {
   const contact::ContactGeometry& old = problem_.contact_geometry();
   const std::vector<double>& old_penalty = problem_.zone_penalty();
   // Penalty of a new zone: that of the old zone of the same pair of beams that overlaps it most.
@@ -153,7 +156,7 @@ void ContactLoops::collect_stats() {
 solver::NewtonReport ContactLoops::solve() {
   stats_ = ContactStepStats{};
   solver::NewtonReport total;
-  redetect();
+  install(detect());
   stats_.detections = 1;
   for (;;) {
     for (int m = 1;; ++m) {  // loop 3
@@ -182,7 +185,7 @@ solver::NewtonReport ContactLoops::solve() {
     if (stats_.detections >= laws_.max_detections) break;
     // Loop 2: a new detection in the converged state; done when it finds the same contact elements.
     const contact::ContactGeometry& current = problem_.contact_geometry();
-    const contact::ContactGeometry probe = contact::detect(model_, problem_.state(), detection_, beams_);
+    contact::ContactGeometry probe = detect();
     bool same =
         probe.elements.size() == current.elements.size() && probe.zones.size() == current.zones.size();
     for (std::size_t k = 0; same && k < probe.elements.size(); ++k) {
@@ -191,12 +194,10 @@ solver::NewtonReport ContactLoops::solve() {
              std::abs(probe.elements[k].particle_j.abscissa - current.elements[k].particle_j.abscissa) <= h;
     }
     if (same) break;
-    redetect();
+    install(std::move(probe));
     ++stats_.detections;
   }
-  Eigen::VectorXd residual;
-  problem_.evaluate(residual, false);
-  collect_stats();
+  collect_stats();  // Newton's last evaluation was at the converged state, with these contact elements
   total.converged = true;
   return total;
 }

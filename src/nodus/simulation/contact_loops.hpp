@@ -50,8 +50,10 @@ class ContactLoops {
   double detection_seconds() const { return detection_seconds_; }
 
  private:
-  /// New contact elements from a detection in the current state, with penalties and history carried over.
-  void redetect();
+  /// A detection in the current state (timed).
+  contact::ContactGeometry detect();
+  /// Makes `next` the contact elements, with penalties and history carried over from the current ones.
+  void install(contact::ContactGeometry next);
   /// Updates the normals in the current state; returns the largest turn [rad].
   double update_normals();
   /// Adjusts the penalty of each zone whose largest penetration is outside [p_max / 2, p_max] so that it
