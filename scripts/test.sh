@@ -5,10 +5,10 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_TESTS=ON -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/release -j "$jobs"
-ctest --test-dir build/release --output-on-failure -j "$jobs"
-cmake -S . -B build/debug-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DNODUS_SANITIZE=ON -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
+ctest --test-dir build/release --output-on-failure --no-tests=error -j "$jobs"
+cmake -S . -B build/debug-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DNODUS_SANITIZE=ON -DNODUS_BUILD_TESTS=ON -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/debug-sanitize -j "$jobs"
 ASAN_OPTIONS=detect_leaks=1 UBSAN_OPTIONS=print_stacktrace=1:halt_on_error=1 \
-  ctest --test-dir build/debug-sanitize --output-on-failure -j "$jobs"
+  ctest --test-dir build/debug-sanitize --output-on-failure --no-tests=error -j "$jobs"
