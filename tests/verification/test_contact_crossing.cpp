@@ -73,8 +73,10 @@ TEST(ContactCrossing, ForceMatchesTheSimplySupportedBeams) {
       EXPECT_NEAR(support, 0.0, 1e-12);
       continue;
     }
-    // Equilibrium of the upper beam: the support reactions carry the contact force.
-    EXPECT_NEAR(r.normal_force, support, 1e-6 * support);
+    // Equilibrium of the upper beam: the support reactions carry the contact force, to within the residual
+    // the solver accepts. Here that is its rounding floor, 6.4e-9 N (EquilibriumProblem), 2e-5 of the
+    // smallest force; the loop on contact elements stops as soon as a new set leaves the residual below it.
+    EXPECT_NEAR(r.normal_force, support, 1e-4 * support);
     // The contact elements sit at most h_c / 2 = 0.0125 mm from the crossing point, where the circular
     // sections leave a clearance of 2 R (1 - cos) < 1e-4 p_max; shear and the Poisson effect of the 9-dof
     // beams are of order (R / L)^2 = 1e-4. Hence 0.5 %.

@@ -41,6 +41,7 @@ struct RawZone {
   int beam_i = 0, beam_j = 0;
   double a = 0.0, b = 0.0, lo = 0.0, hi = 0.0;  ///< [a, b] on I, [lo, hi] on J, lo <= hi
   bool antiparallel = false;
+  double evidence = 1.0;  ///< |cos| of the angle between the axes when they decided the orientation, else 1
 };
 
 double clamp_to(double s, double length) {
@@ -159,11 +160,15 @@ std::vector<RawZone> zones_from_beam(const BeamCurves& curves, const ElementTree
     const auto [lo_it, hi_it] = std::minmax_element(c.match.begin(), c.match.end());
     const double progression = c.match.back() - c.match.front();
     bool antiparallel;
+    double evidence = 1.0;
     if (std::abs(progression) > 0.25 * (t1 - t0)) {
       antiparallel = progression < 0.0;
     } else {
       const std::size_t mid = c.tests.size() / 2;
-      antiparallel = curves.at(beam, c.tests[mid]).dr.dot(curves.at(c.beam, c.match[mid]).dr) < 0.0;
+      const Eigen::Vector3d t_i = curves.at(beam, c.tests[mid]).dr.normalized();
+      const Eigen::Vector3d t_j = curves.at(c.beam, c.match[mid]).dr.normalized();
+      antiparallel = t_i.dot(t_j) < 0.0;
+      evidence = std::abs(t_i.dot(t_j));
     }
     RawZone z{beam,
               c.beam,
@@ -171,7 +176,8 @@ std::vector<RawZone> zones_from_beam(const BeamCurves& curves, const ElementTree
               clamp_to(t1 + half, length),
               clamp_to(*lo_it - half, other_length),
               clamp_to(*hi_it + half, other_length),
-              antiparallel};
+              antiparallel,
+              evidence};
     // Canonical order: beam_i < beam_j; for self-contact, [a, b] on the later part.
     if (beam > c.beam || (beam == c.beam && c.later)) {
       std::swap(z.beam_i, z.beam_j);
@@ -183,9 +189,20 @@ std::vector<RawZone> zones_from_beam(const BeamCurves& curves, const ElementTree
   return zones;
 }
 
+bool overlaps(const ProximityZone& x, const ProximityZone& y) {
+  return x.beam_i == y.beam_i && x.beam_j == y.beam_j && x.a <= y.b && y.a <= x.b &&
+         std::min(x.c, x.d) <= std::max(y.c, y.d) && std::min(y.c, y.d) <= std::max(x.c, x.d);
+}
+
+/// Below this |cos| of the angle between the axes (crossings steeper than 60 degrees) the orientation of a
+/// zone is a matter of convention; a zone keeps the orientation of the previous zone it overlaps, so that a
+/// crossing near 90 degrees does not flip its pairing from one detection to the next.
+constexpr double kWeakOrientation = 0.5;
+
 /// Merges the raw zones of one pair of beams whose intervals overlap on both beams; the result does not
-/// depend on which beam's test points found which zone.
-std::vector<ProximityZone> merge(std::vector<RawZone> raw) {
+/// depend on which beam's test points found which zone. Zones whose orientation is weakly decided take that
+/// of an overlapping zone of `previous` (may be null).
+std::vector<ProximityZone> merge(std::vector<RawZone> raw, const ContactGeometry* previous) {
   std::sort(raw.begin(), raw.end(), [](const RawZone& x, const RawZone& y) {
     return std::tie(x.beam_i, x.beam_j, x.a, x.b, x.lo, x.hi) <
            std::tie(y.beam_i, y.beam_j, y.a, y.b, y.lo, y.hi);
@@ -204,7 +221,7 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw) {
         parent[find(k)] = find(i);
 
   std::vector<ProximityZone> zones;
-  std::vector<double> orientation;
+  std::vector<double> orientation, evidence;
   std::vector<std::size_t> zone_of_root(n, n);
   for (std::size_t i = 0; i < n; ++i) {
     const std::size_t root = find(i);
@@ -213,6 +230,7 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw) {
       zone_of_root[root] = zones.size();
       zones.push_back({z.beam_i, z.beam_j, z.a, z.b, z.lo, z.hi, 0, 0});
       orientation.push_back(0.0);
+      evidence.push_back(0.0);
     }
     const std::size_t k = zone_of_root[root];
     ProximityZone& m = zones[k];
@@ -221,9 +239,18 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw) {
     m.c = std::min(m.c, z.lo);
     m.d = std::max(m.d, z.hi);
     orientation[k] += (z.antiparallel ? -1.0 : 1.0) * (z.b - z.a + z.hi - z.lo);
+    evidence[k] = std::max(evidence[k], z.evidence);
   }
-  for (std::size_t k = 0; k < zones.size(); ++k)
-    if (orientation[k] < 0.0) std::swap(zones[k].c, zones[k].d);
+  for (std::size_t k = 0; k < zones.size(); ++k) {
+    bool antiparallel = orientation[k] < 0.0;
+    if (previous && evidence[k] < kWeakOrientation)
+      for (const ProximityZone& p : previous->zones)
+        if (overlaps(zones[k], p)) {
+          antiparallel = p.c > p.d;
+          break;
+        }
+    if (antiparallel) std::swap(zones[k].c, zones[k].d);
+  }
   std::sort(zones.begin(), zones.end(), [](const ProximityZone& x, const ProximityZone& y) {
     return std::tie(x.beam_i, x.beam_j, x.a) < std::tie(y.beam_i, y.beam_j, y.a);
   });
@@ -389,7 +416,8 @@ bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactE
 }
 
 ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
-                       const DetectionParameters& parameters, const std::vector<int>& beams) {
+                       const DetectionParameters& parameters, const std::vector<int>& beams,
+                       const ContactGeometry* previous) {
   std::vector<int> active = beams;
   if (active.empty()) {
     active.resize(model.beams().size());
@@ -416,7 +444,7 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
   std::vector<RawZone> raw;
   for (const std::vector<RawZone>& z : found) raw.insert(raw.end(), z.begin(), z.end());
 
-  const std::vector<ProximityZone> zones = merge(std::move(raw));
+  const std::vector<ProximityZone> zones = merge(std::move(raw), previous);
   const auto num_zones = static_cast<std::ptrdiff_t>(zones.size());
   std::vector<std::vector<ContactElement>> built(zones.size());
 #pragma omp parallel for schedule(dynamic)

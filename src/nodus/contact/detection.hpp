@@ -84,9 +84,12 @@ struct ContactGeometry {
 };
 
 /// Detects contact between the beams listed in `beams` (indices into model.beams(); all beams if empty)
-/// in state `x` (nine values per node). Zones come ordered by (beam_i, beam_j, a).
+/// in state `x` (nine values per node). Zones come ordered by (beam_i, beam_j, a). `previous`, the last
+/// detection (may be null), settles the orientation of zones where the axes cross at more than 60 degrees
+/// and either pairing would do: such a zone keeps the orientation of the previous zone it overlaps.
 ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
-                       const DetectionParameters& parameters, const std::vector<int>& beams = {});
+                       const DetectionParameters& parameters, const std::vector<int>& beams = {},
+                       const ContactGeometry* previous = nullptr);
 
 /// The contact element at relative abscissa `zeta` in [0, 1] of `zone` in state `x` (Eq. 33-45), built as
 /// detect() builds the elements of a zone (the `zone` field of `out` is left as it is). False if the plane

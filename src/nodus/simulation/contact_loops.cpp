@@ -51,7 +51,8 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
 
 contact::ContactGeometry ContactLoops::detect() {
   const auto start = std::chrono::steady_clock::now();
-  contact::ContactGeometry g = contact::detect(model_, problem_.state(), detection_, beams_);
+  contact::ContactGeometry g =
+      contact::detect(model_, problem_.state(), detection_, beams_, &problem_.contact_geometry());
   detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return g;
 }
@@ -183,19 +184,15 @@ solver::NewtonReport ContactLoops::solve() {
                     off ? ", penalties adjusted" : "");
     }
     if (stats_.detections >= laws_.max_detections) break;
-    // Loop 2: a new detection in the converged state; done when it finds the same contact elements.
-    const contact::ContactGeometry& current = problem_.contact_geometry();
-    contact::ContactGeometry probe = detect();
-    bool same =
-        probe.elements.size() == current.elements.size() && probe.zones.size() == current.zones.size();
-    for (std::size_t k = 0; same && k < probe.elements.size(); ++k) {
-      const double h = 0.1 * model_.beam(probe.elements[k].particle_i.beam).element_length();
-      same = std::abs(probe.elements[k].particle_i.abscissa - current.elements[k].particle_i.abscissa) <= h &&
-             std::abs(probe.elements[k].particle_j.abscissa - current.elements[k].particle_j.abscissa) <= h;
-    }
-    if (same) break;
-    install(std::move(probe));
+    // Loop 2: a new detection in the converged state. The set of contact elements has converged when the
+    // state is already in equilibrium with the new set, to the residual tolerance: Newton would stop at once.
+    install(detect());
     ++stats_.detections;
+    Eigen::VectorXd residual;
+    problem_.evaluate(residual, false);
+    if (residual.norm() <= problem_.residual_tolerance()) break;
+    spdlog::debug("contact loop 2: |R| = {:.3e} with the new contact elements (tolerance {:.1e})",
+                  residual.norm(), problem_.residual_tolerance());
   }
   collect_stats();  // Newton's last evaluation was at the converged state, with these contact elements
   total.converged = true;

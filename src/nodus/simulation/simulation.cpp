@@ -150,7 +150,8 @@ Simulation::Simulation(scenario::Scenario scenario)
 void Simulation::detect_contact() {
   if (!contact_enabled_) return;
   const auto start = std::chrono::steady_clock::now();
-  contact_ = contact::detect(model_, problem_->committed_state(), detection_, scenario_.contact.beams);
+  contact_ =
+      contact::detect(model_, problem_->committed_state(), detection_, scenario_.contact.beams, &contact_);
   detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
