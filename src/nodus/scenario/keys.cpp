@@ -120,6 +120,9 @@ constexpr std::array kKeys{
   KeyDoc{"output.tube_sides", "integer", "", "12", ">= 3", "facets around each tube in the VTK output"},
   KeyDoc{"output.progress_seconds", "number", "s", "1", ">= 0",
          "minimum interval between progress lines on stderr"},
+  KeyDoc{"output.contact_csv", "bool", "", "false", "",
+         "with contact forces: also write contact/contact_NNNNNN.csv (every contact element) at every VTK "
+         "output step"},
 
   KeyDoc{"contact", "map", "", "-", "",
          "contact detection and contact forces between the beams (docs/contact.md); absent: no contact, "

@@ -762,6 +762,7 @@ OutputSettings read_output(const Reader& reader, const MapView& top) {
   if (const auto value = map.get("progress_seconds")) {
     output.progress_seconds = reader.number(*value, [](double v) { return v >= 0.0; });
   }
+  if (const auto value = map.get("contact_csv")) output.contact_csv = reader.boolean(*value);
   return output;
 }
 
@@ -1035,6 +1036,7 @@ std::string describe(const Scenario& scenario) {
   line(fmt::format("  vtk_every: {}", output.vtk_every));
   line(fmt::format("  tube_sides: {}", output.tube_sides));
   line(fmt::format("  progress_seconds: {}  # s", format_number(output.progress_seconds)));
+  line(fmt::format("  contact_csv: {}", output.contact_csv ? "true" : "false"));
 
   const ContactSettings& contact = scenario.contact;
   line("contact:");

@@ -110,6 +110,7 @@ struct OutputSettings {
   int vtk_every = 1;              ///< write a VTK file every N converged steps (0: only the final state)
   int tube_sides = 12;            ///< facets around each tube in the VTK output, >= 3
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
+  bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
 };
 
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
