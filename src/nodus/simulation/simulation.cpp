@@ -246,6 +246,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
             record.penetration_ratio = c.penetration_ratio;
             record.normal_force = c.normal_force;
             record.tangential_force = c.tangential_force;
+            record.slipping = c.slipping;
           } else {
             detect_contact();
           }

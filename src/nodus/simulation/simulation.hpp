@@ -36,6 +36,7 @@ struct StepRecord {
   double penetration_ratio = 0.0;               ///< largest penetration / p_max
   double normal_force = 0.0;                    ///< sum of the normal reactions [N]
   double tangential_force = 0.0;                ///< sum of the friction force magnitudes [N]
+  int slipping = 0;                             ///< contact elements sliding (friction at mu R_N)
 };
 
 struct RunSummary {
