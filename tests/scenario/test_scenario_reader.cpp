@@ -568,7 +568,7 @@ TEST(ScenarioErrors, Choices) {
   EXPECT_TRUE(fails_at(with_line(kBase, 13, "    type: glue"), 13, "conditions[0].type"));
   EXPECT_TRUE(fails_at(kBase + "units: {length: m}\n", 34, "units.length"));
   EXPECT_TRUE(fails_at(kBase + "units: {length: mm, force: N, stress: GPa, time: s}\n", 34, "units.stress"));
-  EXPECT_NE(error_of(with_line(kBase, 13, "    type: glue")).find("clamp | motion | load"),
+  EXPECT_NE(error_of(with_line(kBase, 13, "    type: glue")).find("clamp | motion | rigid | load"),
             std::string::npos);
 }
 

@@ -19,12 +19,26 @@ Eigen::Matrix3d rotation_matrix(const Vec3& rotation_vector) {
 
 }  // namespace
 
-int Conditions::add_motion(std::string name, int node, const DofMask& mask) {
+int Conditions::add_motion(std::string name, int node, const DofMask& mask, std::optional<Vec3> pivot) {
   Item item;
   item.name = std::move(name);
   item.kind = ConditionKind::motion;
-  item.node = node;
+  item.nodes = {node};
   item.mask = mask;
+  item.given_pivot = pivot;
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+int Conditions::add_rigid(std::string name, std::vector<int> nodes, std::optional<Vec3> pivot) {
+  if (nodes.empty()) throw std::invalid_argument("add_rigid: no nodes");
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::motion;
+  item.rigid = true;
+  item.nodes = std::move(nodes);
+  item.mask.fill(true);
+  item.given_pivot = pivot;
   items_.push_back(std::move(item));
   return size() - 1;
 }
@@ -34,7 +48,7 @@ int Conditions::add_load(std::string name, int node, const Vec3& force, const Ve
   Item item;
   item.name = std::move(name);
   item.kind = ConditionKind::load;
-  item.node = node;
+  item.nodes = {node};
   item.force.reset(0.0, force);
   item.moment.reset(0.0, moment);
   item.axis = moment_axis.normalized();
@@ -53,9 +67,12 @@ void Conditions::anchor_moment(Item& item, const NodeVector& state) {
 void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   Item& item = at(c);
   item.active = true;
-  const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.node);
+  const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.nodes.front());
   if (item.kind == ConditionKind::motion) {
-    item.anchor = state;
+    item.anchors.clear();
+    for (int node : item.nodes) item.anchors.push_back(x.segment<kNodeDofs>(kNodeDofs * node));
+    item.pivot =
+        item.given_pivot ? *item.given_pivot : item.anchors[item.anchors.size() / 2].head<3>().eval();
     item.translation.reset(time, Vec3::Zero());
     item.rotation.reset(time, Vec3::Zero());
     item.force.reset(time, Vec3::Zero());
@@ -69,6 +86,7 @@ void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
 void Conditions::release(int c, double time, const Eigen::VectorXd& x, const NodeVector& reaction,
                          double end_time) {
   Item& item = at(c);
+  if (item.rigid) throw std::logic_error("release of the rigid condition '" + item.name + "'");
   if (item.active && item.kind == ConditionKind::motion) {
     // Split the support's generalised force into a force on the centre, a moment about the fixed axis of its
     // present value (acting as a moment load does), and what remains on the directors (their stretching
@@ -76,7 +94,7 @@ void Conditions::release(int c, double time, const Eigen::VectorXd& x, const Nod
     NodeVector f = NodeVector::Zero();
     for (int d = 0; d < kNodeDofs; ++d)
       if (item.mask[static_cast<std::size_t>(d)]) f[d] = reaction[d];
-    const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.node);
+    const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.nodes.front());
     const Vec3 moment =
         state.segment<3>(3).cross(f.segment<3>(3)) + state.segment<3>(6).cross(f.segment<3>(6));
     NodeVector rest = f;
@@ -129,44 +147,50 @@ std::vector<bool> Conditions::prescribed(int num_dofs) const {
   for (int c = 0; c < size(); ++c) {
     const Item& item = at(c);
     if (!item.active || item.kind != ConditionKind::motion) continue;
-    for (int d = 0; d < kNodeDofs; ++d) {
-      if (!item.mask[d]) continue;
-      const auto dof = static_cast<std::size_t>(kNodeDofs * item.node + d);
-      if (owner[dof] >= 0)
-        throw std::runtime_error(fmt::format("conditions '{}' and '{}' both prescribe unknown {} of node {}",
-                                             at(owner[dof]).name, item.name, d, item.node));
-      owner[dof] = c;
-      mask[dof] = true;
-    }
+    for (int node : item.nodes)
+      for (int d = 0; d < kNodeDofs; ++d) {
+        if (!item.mask[d]) continue;
+        const auto dof = static_cast<std::size_t>(kNodeDofs * node + d);
+        if (owner[dof] >= 0)
+          throw std::runtime_error(
+              fmt::format("conditions '{}' and '{}' both prescribe unknown {} of node {}",
+                          at(owner[dof]).name, item.name, d, node));
+        owner[dof] = c;
+        mask[dof] = true;
+      }
   }
   return mask;
 }
 
-NodeVector Conditions::prescribed_values(const Item& item, double time) const {
+NodeVector Conditions::prescribed_values(const Item& item, std::size_t k, double time) const {
   const Eigen::Matrix3d q = rotation_matrix(item.rotation.at(time));
+  const NodeVector& anchor = item.anchors[k];
   NodeVector v;
-  v << item.anchor.segment<3>(0) + item.translation.at(time), q * item.anchor.segment<3>(3),
-      q * item.anchor.segment<3>(6);
+  v << item.pivot + item.translation.at(time) + q * (anchor.segment<3>(0) - item.pivot),
+      q * anchor.segment<3>(3), q * anchor.segment<3>(6);
   return v;
 }
 
 void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
   for (const Item& item : items_) {
     if (!item.active || item.kind != ConditionKind::motion) continue;
-    const NodeVector v = prescribed_values(item, time);
-    for (int d = 0; d < kNodeDofs; ++d)
-      if (item.mask[d]) x[kNodeDofs * item.node + d] = v[d];
+    for (std::size_t k = 0; k < item.nodes.size(); ++k) {
+      const NodeVector v = prescribed_values(item, k, time);
+      for (int d = 0; d < kNodeDofs; ++d)
+        if (item.mask[d]) x[kNodeDofs * item.nodes[k] + d] = v[d];
+    }
   }
 }
 
 bool Conditions::applies_load(const Item& item) {
+  if (item.rigid) return false;
   return item.kind == ConditionKind::load ? item.active : !item.active;  // a released support ramps down
 }
 
 void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
   for (const Item& item : items_) {
     if (!applies_load(item)) continue;
-    const int base = kNodeDofs * item.node;
+    const int base = kNodeDofs * item.nodes.front();
     f_ext.segment<3>(base) += item.force.at(time);
     f_ext.segment<kNodeDofs>(base) += item.director_force.at(time);
     const double m = item.moment.at(time);
@@ -183,10 +207,10 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
     if (!applies_load(item)) continue;
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
-    const int v = kNodeDofs * item.node + 3 + 3 * item.director;
+    const int v = kNodeDofs * item.nodes.front() + 3 + 3 * item.director;
     Eigen::Matrix<double, kNodeDofs, kNodeDofs> k = Eigen::Matrix<double, kNodeDofs, kNodeDofs>::Zero();
     k.block<3, 3>(3 + 3 * item.director, 3 + 3 * item.director) = -m * item.angle->hessian(x.segment<3>(v));
-    const int nodes[1] = {item.node};
+    const int nodes[1] = {item.nodes.front()};
     assembler.add(nodes, k);
   }
 }
@@ -194,13 +218,13 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
 void Conditions::commit(const Eigen::VectorXd& x) {
   for (Item& item : items_)
     if (applies_load(item) && item.angle)
-      item.angle->commit(x.segment<3>(kNodeDofs * item.node + 3 + 3 * item.director));
+      item.angle->commit(x.segment<3>(kNodeDofs * item.nodes.front() + 3 + 3 * item.director));
 }
 
 SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd& x,
                                        const Eigen::VectorXd& residual) const {
   const Item& item = at(c);
-  const int base = kNodeDofs * item.node;
+  const int base = kNodeDofs * item.nodes.front();
   SectionForce out;
   if (applies_load(item)) {
     const NodeVector f = item.director_force.at(time);
@@ -210,6 +234,17 @@ SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd
     return out;
   }
   if (!item.active) return out;
+  if (item.rigid) {  // resultant about the moved pivot
+    const Vec3 centre = item.pivot + item.translation.at(time);
+    for (int node : item.nodes) {
+      const int b = kNodeDofs * node;
+      out.force += residual.segment<3>(b);
+      out.moment += (x.segment<3>(b) - centre).cross(residual.segment<3>(b)) +
+                    x.segment<3>(b + 3).cross(residual.segment<3>(b + 3)) +
+                    x.segment<3>(b + 6).cross(residual.segment<3>(b + 6));
+    }
+    return out;
+  }
   // f_int - f_ext at a prescribed section is what the support must supply; its moment about the centre is the
   // sum of g_a x (force on g_a).
   out.force = residual.segment<3>(base);

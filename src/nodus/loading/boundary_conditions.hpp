@@ -1,7 +1,9 @@
 #pragma once
 /// Boundary conditions on cross-sections: prescribed motions (clamps are motions that stay put) and loads
 /// (a dead force on the centre, a moment about a fixed axis) [Durville 2012, Eq. 4]. A prescribed rotation
-/// acts by rotating the section directors: g_a(t) = Q(t) g_a(activation), r(t) = r(activation) + u(t).
+/// acts by rotating the section directors: g_a(t) = Q(t) g_a(activation), and the centre about a pivot p
+/// fixed at activation: r(t) = p + u(t) + Q(t) (r(activation) - p); without a pivot p is the centre itself.
+/// A rigid condition moves every node of a list (a tool beam) that way.
 
 #include <array>
 #include <optional>
@@ -34,7 +36,11 @@ enum class ConditionKind { motion, load };
 class Conditions {
  public:
   /// A prescribed motion of the dofs in `mask` of global node `node`; a clamp is a motion with no keyframes.
-  int add_motion(std::string name, int node, const DofMask& mask);
+  /// `pivot` [mm]: the fixed point the rotation turns the centre about (none: the centre itself).
+  int add_motion(std::string name, int node, const DofMask& mask, std::optional<Vec3> pivot = std::nullopt);
+  /// A rigid motion of all nine unknowns of every node in `nodes` (a tool beam): rotation about `pivot`
+  /// (none: the centre of the middle node at activation). It cannot be released.
+  int add_rigid(std::string name, std::vector<int> nodes, std::optional<Vec3> pivot = std::nullopt);
   /// A load on global node `node`: force [N] and moment [N mm] at load time 0. The moment's axis is fixed:
   /// `moment_axis` (unit) for the whole run; its value is moment_axis * moment.
   int add_load(std::string name, int node, const Vec3& force, const Vec3& moment_axis, double moment);
@@ -42,7 +48,9 @@ class Conditions {
   int size() const { return static_cast<int>(items_.size()); }
   const std::string& name(int c) const { return at(c).name; }
   ConditionKind kind(int c) const { return at(c).kind; }
-  int node(int c) const { return at(c).node; }
+  /// The node of a motion or load; the first node of a rigid condition.
+  int node(int c) const { return at(c).nodes.front(); }
+  bool rigid(int c) const { return at(c).rigid; }
   bool active(int c) const { return at(c).active; }
 
   /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
@@ -76,6 +84,7 @@ class Conditions {
 
   /// The force and moment of condition c on its section: for a motion, the reaction of the support, read from
   /// the out-of-balance forces `residual` = f_int - f_ext at the section's unknowns; for a load, the load.
+  /// For a rigid condition: the resultant on all its nodes, moment about the moved pivot p + u(t).
   SectionForce section_force(int c, double time, const Eigen::VectorXd& x,
                              const Eigen::VectorXd& residual) const;
 
@@ -83,11 +92,14 @@ class Conditions {
   struct Item {
     std::string name;
     ConditionKind kind = ConditionKind::motion;
-    int node = 0;
+    std::vector<int> nodes;  ///< one node, or all the nodes of a rigid condition
     DofMask mask{};
     bool active = false;
+    bool rigid = false;
     // motion
-    NodeVector anchor = NodeVector::Zero();
+    std::vector<NodeVector> anchors;  ///< per node, at activation
+    std::optional<Vec3> given_pivot;
+    Vec3 pivot = Vec3::Zero();  ///< at activation
     Path<Vec3> translation{Vec3::Zero()};
     Path<Vec3> rotation{Vec3::Zero()};
     // load, or a released motion's support being ramped down
@@ -101,7 +113,7 @@ class Conditions {
   };
   const Item& at(int c) const { return items_.at(static_cast<std::size_t>(c)); }
   Item& at(int c) { return items_.at(static_cast<std::size_t>(c)); }
-  NodeVector prescribed_values(const Item& item, double time) const;
+  NodeVector prescribed_values(const Item& item, std::size_t k, double time) const;
   static void anchor_moment(Item& item, const NodeVector& state);
   /// Whether the item's force and moment act: an active load, or a released motion.
   static bool applies_load(const Item& item);

@@ -147,6 +147,8 @@ std::string_view type_name(ConditionType type) {
       return "clamp";
     case ConditionType::motion:
       return "motion";
+    case ConditionType::rigid:
+      return "rigid";
     case ConditionType::load:
       return "load";
   }
@@ -523,12 +525,32 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
     const std::string type = reader.choice(map.require("type"));
     condition.type = type == "clamp"    ? ConditionType::clamp
                      : type == "motion" ? ConditionType::motion
+                     : type == "rigid"  ? ConditionType::rigid
                                         : ConditionType::load;
 
     const Field beam = map.require("beam");
     const auto beam_index = beam_names.find(reader.name(beam));
     if (!beam_index) reader.fail(beam, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
     condition.beam = *beam_index;
+
+    const auto pivot = map.get("pivot");
+    if (pivot) {
+      if (condition.type != ConditionType::motion && condition.type != ConditionType::rigid)
+        reader.fail(*pivot,
+                    fmt::format("no pivot on a {} condition (pivot is for motion and rigid conditions)",
+                                type_name(condition.type)));
+      condition.pivot = reader.vec(*pivot);
+    }
+    if (condition.type == ConditionType::rigid) {  // the whole beam, all dofs
+      for (const char* key : {"at", "dofs", "force", "moment"})
+        if (const auto value = map.get(key))
+          reader.fail(*value,
+                      fmt::format("no {} on a rigid condition (it moves every node of its beam)", key));
+      condition.dofs.fill(true);
+      if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+      conditions.push_back(condition);
+      continue;
+    }
 
     const Field at = map.require("at");
     const int last_node = 2 * beams[condition.beam].elements;
@@ -600,15 +622,24 @@ std::vector<std::string> names_of_type(const std::vector<ConditionSpec>& conditi
   return out;
 }
 
-/// The condition a key of stages[].motions or stages[].loads names; it must have the given type.
+/// The condition a key of stages[].motions or stages[].loads names; it must have the given type (a motion
+/// target may also name a rigid condition).
 int target_condition(const Reader& reader, const MapView::Entry& entry, const std::string& path,
                      const NameTable& condition_names, const std::vector<ConditionSpec>& conditions,
                      ConditionType type) {
-  const std::string expected = fmt::format("the name of a {} condition ({})", type_name(type),
-                                           name_list(names_of_type(conditions, type)));
+  std::vector<std::string> names = names_of_type(conditions, type);
+  if (type == ConditionType::motion) {
+    const std::vector<std::string> rigid = names_of_type(conditions, ConditionType::rigid);
+    names.insert(names.end(), rigid.begin(), rigid.end());
+  }
+  const std::string expected =
+      fmt::format("the name of a {} condition ({})",
+                  type == ConditionType::motion ? std::string_view("motion or rigid") : type_name(type),
+                  name_list(names));
   const auto index = condition_names.find(entry.key);
   if (!index) reader.fail(entry.line, path, expected, entry.key);
-  if (conditions[*index].type != type) {
+  const ConditionType found = conditions[*index].type;
+  if (found != type && !(type == ConditionType::motion && found == ConditionType::rigid)) {
     reader.fail(entry.line, path, expected,
                 fmt::format("{} (a {} condition)", entry.key, type_name(conditions[*index].type)));
   }
@@ -656,8 +687,29 @@ MotionTarget read_motion_target(const Reader& reader, const Field& field, int co
   return target;
 }
 
+/// stages[].contact_off or contact_on: names of beams that take part in contact.
+std::vector<int> read_contact_beams(const Reader& reader, const std::optional<Field>& field,
+                                    const NameTable& beam_names, const ContactSettings& contact,
+                                    std::string_view list_name) {
+  std::vector<int> out;
+  if (!field) return out;
+  if (!contact.enabled) reader.fail(*field, "no contact_off or contact_on without a contact section");
+  for (const Field& item : reader.list(*field, false)) {
+    const auto index = beam_names.find(item.node.IsScalar() ? item.node.Scalar() : std::string());
+    if (!index) reader.fail(item, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
+    if (!contact.beams.empty() &&
+        std::find(contact.beams.begin(), contact.beams.end(), *index) == contact.beams.end())
+      reader.fail(item, "a beam listed in contact.beams");
+    if (std::find(out.begin(), out.end(), *index) != out.end())
+      reader.fail(item, fmt::format("each beam once in {}", list_name));
+    out.push_back(*index);
+  }
+  return out;
+}
+
 std::vector<StageSpec> read_stages(const Reader& reader, const MapView& top, const NameTable& condition_names,
-                                   const std::vector<ConditionSpec>& conditions, MomentAxes& moment_axes) {
+                                   const std::vector<ConditionSpec>& conditions, const NameTable& beam_names,
+                                   const ContactSettings& contact, MomentAxes& moment_axes) {
   // The value each load has at the start of the current stage.
   std::map<int, std::pair<Vec3, Vec3>> load_values;
   for (std::size_t i = 0; i < conditions.size(); ++i) {
@@ -687,7 +739,20 @@ std::vector<StageSpec> read_stages(const Reader& reader, const MapView& top, con
         const std::vector<Field> items = reader.list(*release, false);
         reader.fail(items[i], "a condition that is not also in activate of the same stage");
       }
+      if (conditions[static_cast<std::size_t>(stage.release[i])].type == ConditionType::rigid) {
+        const std::vector<Field> items = reader.list(*release, false);
+        reader.fail(items[i],
+                    "a condition that is not rigid (a tool beam stays where its motion puts it; "
+                    "take it out of contact with contact_off)");
+      }
     }
+    const auto off = map.get("contact_off");
+    stage.contact_off = read_contact_beams(reader, off, beam_names, contact, "contact_off");
+    stage.contact_on = read_contact_beams(reader, map.get("contact_on"), beam_names, contact, "contact_on");
+    for (std::size_t i = 0; i < stage.contact_off.size(); ++i)
+      if (std::find(stage.contact_on.begin(), stage.contact_on.end(), stage.contact_off[i]) !=
+          stage.contact_on.end())
+        reader.fail(reader.list(*off, false)[i], "a beam that is not also in contact_on of the same stage");
 
     if (const auto motions = map.get("motions")) {
       const MapView targets(reader, *motions, true);
@@ -849,10 +914,11 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
   scenario.conditions =
       read_conditions(reader, top, beam_names, scenario.beams, condition_names, moment_axes);
 
-  scenario.stages = read_stages(reader, top, condition_names, scenario.conditions, moment_axes);
+  scenario.contact = read_contact(reader, top, beam_names);
+  scenario.stages = read_stages(reader, top, condition_names, scenario.conditions, beam_names,
+                                scenario.contact, moment_axes);
   scenario.solver = read_solver(reader, top);
   scenario.output = read_output(reader, top);
-  scenario.contact = read_contact(reader, top, beam_names);
   return scenario;
 }
 
@@ -982,6 +1048,11 @@ std::string describe(const Scenario& scenario) {
     line(fmt::format("  - name: {}  # line {}", yaml_name(condition.name), condition.line));
     line(fmt::format("    type: {}", type_name(condition.type)));
     line(fmt::format("    beam: {}", yaml_name(beam.name)));
+    if (condition.pivot) line(fmt::format("    pivot: {}  # mm", format_vec(*condition.pivot)));
+    if (condition.type == ConditionType::rigid) {
+      line(fmt::format("    active: {}", condition.initially_active ? "true" : "false"));
+      continue;
+    }
     const std::string at = condition.node == 0                   ? std::string("start")
                            : condition.node == 2 * beam.elements ? std::string("end")
                                                                  : std::to_string(condition.node);
@@ -1002,6 +1073,13 @@ std::string describe(const Scenario& scenario) {
     line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
     line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
     line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
+    const auto beam_list = [&](const std::vector<int>& beams) {
+      std::vector<std::string> names;
+      for (int b : beams) names.push_back(yaml_name(scenario.beams.at(static_cast<std::size_t>(b)).name));
+      return fmt::format("[{}]", fmt::join(names, ", "));
+    };
+    if (!stage.contact_off.empty()) line(fmt::format("    contact_off: {}", beam_list(stage.contact_off)));
+    if (!stage.contact_on.empty()) line(fmt::format("    contact_on: {}", beam_list(stage.contact_on)));
     line(stage.motions.empty() ? "    motions: {}" : "    motions:");
     for (const MotionTarget& motion : stage.motions) {
       line(fmt::format("      {}:", yaml_name(scenario.conditions.at(motion.condition).name)));

@@ -48,6 +48,7 @@ using DofMask = std::array<bool, 9>;
 enum class ConditionType {
   clamp,   ///< the selected dofs keep the values they have when the condition is activated
   motion,  ///< the selected dofs follow a prescribed translation and rotation of the section (stage targets)
+  rigid,   ///< every dof of every node of the beam follows a rigid motion (a tool beam; stage targets)
   load,    ///< dead force on the centre and moment about a fixed axis, applied to the section
 };
 
@@ -61,6 +62,7 @@ struct ConditionSpec {
   bool initially_active = true;  ///< active from the first stage on, unless false
   Vec3 force = Vec3::Zero();     ///< load: initial force [N]
   Vec3 moment = Vec3::Zero();    ///< load: initial moment [N mm]
+  std::optional<Vec3> pivot;     ///< motion, rigid: the point the rotation turns about [mm]
   int line = 0;                  ///< line of the condition in the file (for messages)
 };
 
@@ -91,6 +93,8 @@ struct StageSpec {
   std::vector<int> release;   ///< conditions switched off at the start of the stage
   std::vector<MotionTarget> motions;
   std::vector<LoadTarget> loads;
+  std::vector<int> contact_off;  ///< beams taken out of contact at the start of the stage (tools removed)
+  std::vector<int> contact_on;   ///< beams put back into contact at the start of the stage
 };
 
 enum class LinearSolverKind { cholmod, umfpack };

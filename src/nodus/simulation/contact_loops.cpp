@@ -50,6 +50,7 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
 }
 
 contact::ContactGeometry ContactLoops::detect() {
+  if (beams_.empty()) return {};
   const auto start = std::chrono::steady_clock::now();
   contact::ContactGeometry g =
       contact::detect(model_, problem_.state(), detection_, beams_, &problem_.contact_geometry());

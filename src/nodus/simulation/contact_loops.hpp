@@ -41,9 +41,12 @@ struct ContactStepStats {
 
 class ContactLoops {
  public:
+  /// `beams`: the beams in contact, listed (none: no contact).
   ContactLoops(const model::Model& model, EquilibriumProblem& problem, solver::NewtonSolver& newton,
                contact::DetectionParameters detection, std::vector<int> beams, ContactLawSettings laws);
 
+  /// The beams that take part in contact from the next step on (none: no contact).
+  void set_beams(std::vector<int> beams) { beams_ = std::move(beams); }
   /// Solves the current load step of `problem_` from its current unknowns.
   solver::NewtonReport solve();
   const ContactStepStats& stats() const { return stats_; }

@@ -45,12 +45,19 @@ loading::Conditions build_conditions(const scenario::Scenario& s, const model::M
   loading::Conditions conditions;
   for (int c = 0; c < static_cast<int>(s.conditions.size()); ++c) {
     const scenario::ConditionSpec& spec = s.conditions[static_cast<std::size_t>(c)];
-    const int node = model.beam(spec.beam).node(spec.node);
+    const beam::Beam& beam = model.beam(spec.beam);
+    if (spec.type == scenario::ConditionType::rigid) {
+      std::vector<int> nodes;
+      for (int n = 0; n < beam.num_nodes(); ++n) nodes.push_back(beam.node(n));
+      conditions.add_rigid(spec.name, std::move(nodes), spec.pivot);
+      continue;
+    }
+    const int node = beam.node(spec.node);
     if (spec.type == scenario::ConditionType::load) {
       const loading::Vec3 axis = moment_axis(s, c);
       conditions.add_load(spec.name, node, spec.force, axis, spec.moment.dot(axis));
     } else {
-      conditions.add_motion(spec.name, node, spec.dofs);
+      conditions.add_motion(spec.name, node, spec.dofs, spec.pivot);
     }
   }
   return conditions;
@@ -68,19 +75,20 @@ void check_activation(const scenario::Scenario& s, const model::Model& model) {
     for (std::size_t c = 0; c < s.conditions.size(); ++c) {
       const scenario::ConditionSpec& spec = s.conditions[c];
       if (!active[c] || spec.type == scenario::ConditionType::load) continue;
-      const int node = model.beam(spec.beam).node(spec.node);
-      for (int d = 0; d < model::kDofsPerNode; ++d) {
-        if (!spec.dofs[static_cast<std::size_t>(d)]) continue;
-        int& o = owner[static_cast<std::size_t>(model::kDofsPerNode * node + d)];
-        if (o >= 0)
-          throw scenario::ScenarioError(
-              fmt::format("{}:{}: conditions[{}].dofs: expected no unknown prescribed by two active "
-                          "conditions, got '{}' and '{}' "
-                          "both prescribing unknown {} of node {} of beam '{}' in stage '{}'",
-                          s.path, spec.line, c, s.conditions[static_cast<std::size_t>(o)].name, spec.name, d,
-                          spec.node, s.beams[static_cast<std::size_t>(spec.beam)].name, stage.name));
-        o = static_cast<int>(c);
-      }
+      const beam::Beam& beam = model.beam(spec.beam);
+      const bool rigid = spec.type == scenario::ConditionType::rigid;
+      for (int local = rigid ? 0 : spec.node; local <= (rigid ? beam.num_nodes() - 1 : spec.node); ++local)
+        for (int d = 0; d < model::kDofsPerNode; ++d) {
+          if (!spec.dofs[static_cast<std::size_t>(d)]) continue;
+          int& o = owner[static_cast<std::size_t>(model::kDofsPerNode * beam.node(local) + d)];
+          if (o >= 0)
+            throw scenario::ScenarioError(fmt::format(
+                "{}:{}: conditions[{}]{}: expected no unknown prescribed by two active conditions, got '{}' "
+                "and '{}' both prescribing unknown {} of node {} of beam '{}' in stage '{}'",
+                s.path, spec.line, c, rigid ? "" : ".dofs", s.conditions[static_cast<std::size_t>(o)].name,
+                spec.name, d, local, s.beams[static_cast<std::size_t>(spec.beam)].name, stage.name));
+          o = static_cast<int>(c);
+        }
     }
   }
 }
@@ -140,6 +148,9 @@ Simulation::Simulation(scenario::Scenario scenario)
       Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
   if (scenario_.contact.enabled) {
     contact_enabled_ = true;
+    contact_beams_ = scenario_.contact.beams;
+    if (contact_beams_.empty())
+      for (int b = 0; b < static_cast<int>(model_.beams().size()); ++b) contact_beams_.push_back(b);
     detection_ = resolve_detection(scenario_, model_);
     contact_forces_ = scenario_.contact.forces;
     laws_ = resolve_laws(scenario_);
@@ -150,8 +161,9 @@ Simulation::Simulation(scenario::Scenario scenario)
 void Simulation::detect_contact() {
   if (!contact_enabled_) return;
   const auto start = std::chrono::steady_clock::now();
-  contact_ =
-      contact::detect(model_, problem_->committed_state(), detection_, scenario_.contact.beams, &contact_);
+  contact_ = contact_beams_.empty() ? contact::ContactGeometry{}
+                                    : contact::detect(model_, problem_->committed_state(), detection_,
+                                                      contact_beams_, &contact_);
   detection_seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
@@ -179,7 +191,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
                               {scenario_.solver.max_newton_iterations, scenario_.solver.line_search});
   std::optional<ContactLoops> loops;
   if (contact_enabled_ && contact_forces_)
-    loops.emplace(model_, *problem_, newton, detection_, scenario_.contact.beams, laws_);
+    loops.emplace(model_, *problem_, newton, detection_, contact_beams_, laws_);
   const solver::StepSolver solve_step = [&](solver::SteppedProblem& p) {
     return loops ? loops->solve() : newton.solve(p);
   };
@@ -199,6 +211,14 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
             t1);
     }
     for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
+    if (!stage.contact_off.empty() || !stage.contact_on.empty()) {
+      for (int b : stage.contact_off) std::erase(contact_beams_, b);
+      for (int b : stage.contact_on)
+        if (std::find(contact_beams_.begin(), contact_beams_.end(), b) == contact_beams_.end())
+          contact_beams_.push_back(b);
+      std::sort(contact_beams_.begin(), contact_beams_.end());
+      if (loops) loops->set_beams(contact_beams_);
+    }
     conditions_.hold_until(t0);
     for (const scenario::MotionTarget& m : stage.motions)
       for (const scenario::Keyframe& k : m.keyframes)

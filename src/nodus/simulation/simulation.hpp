@@ -96,6 +96,7 @@ class Simulation {
   double time_ = 0.0;
   bool contact_enabled_ = false;
   contact::DetectionParameters detection_;
+  std::vector<int> contact_beams_;  ///< the beams in contact now (stages take tools out and put them back)
   contact::ContactGeometry contact_;
   double detection_seconds_ = 0.0;
   bool contact_forces_ = false;
