@@ -132,7 +132,10 @@ bool ContactLoops::adjust_penalties() {
     double penetration = 0.0;
     for (int k = zone.first_element; k < zone.first_element + zone.num_elements; ++k)
       penetration = std::max(penetration, -g.elements[static_cast<std::size_t>(k)].gap);
-    if (!(penetration > 0.0)) continue;
+    // A zone that only touches (penetration below p_max / 1000: a surface resting on another, no load yet)
+    // is left alone: matching the aim would divide its penalty by 10 at every pass, leaving it soft for the
+    // load to come.
+    if (!(penetration > 1e-3 * laws_.max_penetration)) continue;
     if (penetration >= 0.5 * laws_.max_penetration && penetration <= laws_.max_penetration) continue;
     off = true;
     // Eq. 54, in the direction that makes the penetration approach the aim: the new coefficient gives at the
