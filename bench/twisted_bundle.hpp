@@ -21,9 +21,11 @@ struct Bundle {
   Eigen::VectorXd x;  ///< the twisted state
 };
 
-inline Bundle twisted_bundle(int fibres, int elements = 100, double length = 10.0, double radius = 0.1) {
+/// `spacing_factor`: the lattice spacing over R (2.02: nearly touching; below 2: neighbours overlap).
+inline Bundle twisted_bundle(int fibres, int elements = 100, double length = 10.0, double radius = 0.1,
+                             double spacing_factor = 2.02) {
   // Hexagonal lattice points nearest the axis.
-  const double spacing = 2.02 * radius;
+  const double spacing = spacing_factor * radius;
   std::vector<Eigen::Vector2d> points;
   const int span = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(fibres)))) + 2;
   for (int i = -span; i <= span; ++i)

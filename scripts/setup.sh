@@ -2,7 +2,10 @@
 # Installs nodus's build dependencies from Debian's packages (Debian 12), if any is missing.
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libyaml-cpp-dev
-  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev)
+  libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
+  libopenblas0-pthread)
+# libopenblas0-pthread: CHOLMOD's supernodal factorisation runs on the system BLAS; Debian's default
+# (netlib) is 4.6x slower on the contact tangent of a 27-fibre bundle (docs/performance.md).
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

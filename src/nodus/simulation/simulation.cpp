@@ -285,6 +285,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   summary.converged = summary.failure.empty();
   summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   summary.detection_seconds = detection_seconds_ + (loops ? loops->detection_seconds() : 0.0);
+  summary.assembly_seconds = newton.timings().evaluation;
+  summary.linear_solve_seconds = newton.timings().linear_solve;
   for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;
 }

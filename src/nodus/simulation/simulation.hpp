@@ -44,8 +44,10 @@ struct RunSummary {
   int steps = 0;
   int newton_iterations = 0;
   double wall_seconds = 0.0;
-  double detection_seconds = 0.0;  ///< of which spent in contact detection
-  std::string failure;             ///< why the run stopped early
+  double detection_seconds = 0.0;     ///< of which spent in contact detection
+  double assembly_seconds = 0.0;      ///< in residual and tangent evaluations inside Newton (line search too)
+  double linear_solve_seconds = 0.0;  ///< in the sparse analysis, factorisation and solves
+  std::string failure;                ///< why the run stopped early
 };
 
 class Simulation;

@@ -1,18 +1,38 @@
 #include "nodus/solver/newton.hpp"
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
 namespace nodus::solver {
+namespace {
+
+/// Adds the wall time of its lifetime to `total`.
+class Stopwatch {
+ public:
+  explicit Stopwatch(double& total) : total_(total), start_(std::chrono::steady_clock::now()) {}
+  ~Stopwatch() { total_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count(); }
+  Stopwatch(const Stopwatch&) = delete;
+  Stopwatch& operator=(const Stopwatch&) = delete;
+
+ private:
+  double& total_;
+  std::chrono::steady_clock::time_point start_;
+};
+
+}  // namespace
 
 NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
   NewtonReport report;
   Eigen::VectorXd residual;
   Eigen::VectorXd u = problem.unknowns();
-  problem.evaluate(residual, true);
+  {
+    const Stopwatch watch(timings_.evaluation);
+    problem.evaluate(residual, true);
+  }
   double norm = residual.norm();
   if (!std::isfinite(norm)) {
     report.failure = "the residual is not finite at the start of the step";
@@ -20,17 +40,22 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
   }
   double increment = INFINITY;
   for (int it = 1; it <= settings_.max_iterations; ++it) {
-    if (!analyzed_) {
-      linear_.analyze(problem.tangent());
-      analyzed_ = true;
+    ++timings_.iterations;
+    Eigen::VectorXd du;
+    {
+      const Stopwatch watch(timings_.linear_solve);
+      if (!analyzed_) {
+        linear_.analyze(problem.tangent());
+        analyzed_ = true;
+      }
+      if (!linear_.factorize(problem.tangent())) {
+        report.failure = fmt::format("the tangent is singular (iteration {})", it);
+        report.iterations = it;
+        report.residual = norm;
+        return report;
+      }
+      du = -linear_.solve(residual);
     }
-    if (!linear_.factorize(problem.tangent())) {
-      report.failure = fmt::format("the tangent is singular (iteration {})", it);
-      report.iterations = it;
-      report.residual = norm;
-      return report;
-    }
-    const Eigen::VectorXd du = -linear_.solve(residual);
     if (!du.allFinite()) {
       report.failure = fmt::format("the linear solve gave a non-finite increment (iteration {})", it);
       report.iterations = it;
@@ -42,32 +67,35 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
     // most `slope_ratio` |s(0)|, or when du is not a descent direction (indefinite tangent).
     double alpha = 1.0;
     Eigen::VectorXd trial_residual;
-    problem.set_unknowns(u + du);
-    problem.evaluate(trial_residual, false);
-    const double s0 = du.dot(residual);
-    if (settings_.line_search && s0 < 0.0) {
-      double lo = 0.0, s_lo = s0;        // s < 0 at lo
-      double hi = INFINITY, s_hi = 0.0;  // s > 0 (or not finite) at hi, once found
-      double s_alpha = du.dot(trial_residual);
-      for (int k = 0; k < settings_.max_line_search_iterations; ++k) {
-        if (std::isfinite(s_alpha) && std::abs(s_alpha) <= settings_.slope_ratio * std::abs(s0)) break;
-        if (!std::isfinite(s_alpha) || s_alpha > 0.0) {
-          hi = alpha;
-          s_hi = s_alpha;
-        } else {
-          lo = alpha;
-          s_lo = s_alpha;
+    {
+      const Stopwatch watch(timings_.evaluation);
+      problem.set_unknowns(u + du);
+      problem.evaluate(trial_residual, false);
+      const double s0 = du.dot(residual);
+      if (settings_.line_search && s0 < 0.0) {
+        double lo = 0.0, s_lo = s0;        // s < 0 at lo
+        double hi = INFINITY, s_hi = 0.0;  // s > 0 (or not finite) at hi, once found
+        double s_alpha = du.dot(trial_residual);
+        for (int k = 0; k < settings_.max_line_search_iterations; ++k) {
+          if (std::isfinite(s_alpha) && std::abs(s_alpha) <= settings_.slope_ratio * std::abs(s0)) break;
+          if (!std::isfinite(s_alpha) || s_alpha > 0.0) {
+            hi = alpha;
+            s_hi = s_alpha;
+          } else {
+            lo = alpha;
+            s_lo = s_alpha;
+          }
+          if (!std::isfinite(hi))
+            alpha = 2.0 * alpha;  // still descending at the longest step tried
+          else if (!std::isfinite(s_hi))
+            alpha = 0.5 * (lo + hi);
+          else  // regula falsi inside the bracket, kept away from its ends
+            alpha =
+                std::clamp(lo - s_lo * (hi - lo) / (s_hi - s_lo), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
+          problem.set_unknowns(u + alpha * du);
+          problem.evaluate(trial_residual, false);
+          s_alpha = du.dot(trial_residual);
         }
-        if (!std::isfinite(hi))
-          alpha = 2.0 * alpha;  // still descending at the longest step tried
-        else if (!std::isfinite(s_hi))
-          alpha = 0.5 * (lo + hi);
-        else  // regula falsi inside the bracket, kept away from its ends
-          alpha =
-              std::clamp(lo - s_lo * (hi - lo) / (s_hi - s_lo), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
-        problem.set_unknowns(u + alpha * du);
-        problem.evaluate(trial_residual, false);
-        s_alpha = du.dot(trial_residual);
       }
     }
     if (!trial_residual.allFinite()) {
@@ -88,7 +116,10 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
       report.converged = true;
       return report;
     }
-    if (it < settings_.max_iterations) problem.evaluate(residual, true);
+    if (it < settings_.max_iterations) {
+      const Stopwatch tangent_watch(timings_.evaluation);
+      problem.evaluate(residual, true);
+    }
   }
   report.failure =
       fmt::format("no convergence in {} iterations (|R| = {:.3e}, tolerance {:.3e}; |du| = {:.3e})",

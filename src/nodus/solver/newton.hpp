@@ -24,6 +24,13 @@ struct NewtonReport {
   std::string failure;     ///< why it did not converge
 };
 
+/// Where Newton's time went, summed over all solves [s].
+struct NewtonTimings {
+  double evaluation = 0.0;    ///< residual and tangent assembly (problem.evaluate), line search included
+  double linear_solve = 0.0;  ///< symbolic analysis, factorisation and solve
+  int iterations = 0;
+};
+
 class NewtonSolver {
  public:
   NewtonSolver(LinearSolver& linear_solver, NewtonSettings settings)
@@ -32,11 +39,13 @@ class NewtonSolver {
   /// scaled |du| <= increment_tolerance. Call reanalyze() when the tangent pattern changes.
   NewtonReport solve(NonlinearProblem& problem);
   void reanalyze() { analyzed_ = false; }
+  const NewtonTimings& timings() const { return timings_; }
 
  private:
   LinearSolver& linear_;
   NewtonSettings settings_;
   bool analyzed_ = false;
+  NewtonTimings timings_;
 };
 
 }  // namespace nodus::solver

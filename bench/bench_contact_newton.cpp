@@ -1,0 +1,110 @@
+// One Newton iteration of a twisted bundle of fibres in contact (bench/twisted_bundle.hpp with the lattice
+// spacing 1.99 R: neighbours overlap by 0.01 R = p_max / 2 with the default laws; both ends of every fibre
+// clamped in the twisted state), split as the global algorithm spends it [Durville 2012, Sect. 6]:
+//   BM_ContactDetection       detect(): proximity zones, intermediate geometries, contact elements (once per
+//                             loop-2 iteration, i.e. once per few Newton iterations)
+//   BM_ContactAssembly        EquilibriumProblem::evaluate(r, true): beams and contact elements, residual and
+//                             tangent
+//   BM_ContactFactorizeSolve  CHOLMOD factorisation and solve (analysis once, outside the loop)
+// The state is not updated, so every iteration does the same work. Argument: number of fibres (100 elements
+// each). Results and commands: docs/performance.md.
+
+#include <memory>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "nodus/contact/detection.hpp"
+#include "nodus/loading/boundary_conditions.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/solver/linear_solver.hpp"
+#include "twisted_bundle.hpp"
+
+namespace {
+
+using nodus::model::kDofsPerNode;
+
+struct Setup {
+  nodus::bench::Bundle bundle;
+  nodus::loading::Conditions conditions;
+  std::unique_ptr<nodus::simulation::EquilibriumProblem> problem;
+  nodus::contact::ContactGeometry geometry;
+
+  explicit Setup(int fibres) : bundle(nodus::bench::twisted_bundle(fibres, 100, 10.0, 0.1, 1.99)) {
+    const nodus::model::Model& model = bundle.model;
+    const nodus::loading::DofMask all{true, true, true, true, true, true, true, true, true};
+    for (int f = 0; f < fibres; ++f) {
+      const nodus::beam::Beam& beam = model.beam(f);
+      for (int node : {beam.node(0), beam.node(beam.num_nodes() - 1)})
+        conditions.activate(conditions.add_motion("end", node, all), 0.0, bundle.x);
+    }
+    problem = std::make_unique<nodus::simulation::EquilibriumProblem>(model, conditions,
+                                                                      nodus::simulation::Tolerances{});
+    problem->set_time(0.0);
+    const std::vector<bool> prescribed = conditions.prescribed(model.num_dofs());
+    Eigen::VectorXd u(problem->size());
+    for (int i = 0, k = 0; i < model.num_dofs(); ++i)
+      if (!prescribed[static_cast<std::size_t>(i)]) u[k++] = bundle.x[i];
+    problem->set_unknowns(u);
+    geometry = nodus::contact::detect(model, bundle.x, {});
+    // The default laws of a run: k0 = E R, p_max = 0.02 R, p_reg = p_max / 10.
+    problem->set_contact_laws(0.0002, std::nullopt);
+    problem->set_contact(geometry, std::vector<double>(geometry.zones.size(), 400.0),
+                         std::vector<Eigen::Vector3d>(geometry.elements.size(), Eigen::Vector3d::Zero()));
+  }
+};
+
+void set_counters(benchmark::State& state, const Setup& s) {
+  state.counters["zones"] = static_cast<double>(s.geometry.zones.size());
+  state.counters["contact_elements"] = static_cast<double>(s.geometry.elements.size());
+  state.counters["free_dofs"] = s.problem->size();
+}
+
+void BM_ContactDetection(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  for (auto _ : state) {
+    nodus::contact::ContactGeometry g =
+        nodus::contact::detect(s.bundle.model, s.bundle.x, {}, {}, &s.geometry);
+    benchmark::DoNotOptimize(g.elements.data());
+  }
+  set_counters(state, s);
+}
+
+void BM_ContactAssembly(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  Eigen::VectorXd r;
+  for (auto _ : state) {
+    s.problem->evaluate(r, true);
+    benchmark::DoNotOptimize(r.data());
+    benchmark::DoNotOptimize(s.problem->tangent().valuePtr());
+    benchmark::ClobberMemory();
+  }
+  set_counters(state, s);
+}
+
+void BM_ContactFactorizeSolve(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  auto linear = nodus::solver::make_linear_solver(nodus::solver::LinearSolverKind::cholmod);
+  Eigen::VectorXd r, du;
+  s.problem->evaluate(r, true);
+  linear->analyze(s.problem->tangent());
+  bool ok = true;
+  for (auto _ : state) {
+    ok = linear->factorize(s.problem->tangent()) && ok;
+    du = linear->solve(r);
+    benchmark::DoNotOptimize(du.data());
+    benchmark::ClobberMemory();
+  }
+  if (!ok) state.SkipWithError("factorize reported a singular matrix");
+  set_counters(state, s);
+}
+
+void sizes(benchmark::internal::Benchmark* b) {
+  b->Arg(7)->Arg(27)->Arg(75)->Unit(benchmark::kMillisecond);
+}
+
+}  // namespace
+
+BENCHMARK(BM_ContactDetection)->Apply(sizes);
+BENCHMARK(BM_ContactAssembly)->Apply(sizes);
+BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes);
