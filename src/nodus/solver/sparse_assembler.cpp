@@ -62,13 +62,23 @@ void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Ei
   const int m = static_cast<int>(blocks.size()) * block_size_;
   if (k.rows() != m || k.cols() != m) throw std::invalid_argument("SparseAssembler::add: size mismatch");
   double* values = matrix_.valuePtr();
+  const int num_blocks = static_cast<int>(blocks.size());
   for (int j = 0; j < m; ++j) {
     const int col = free_index_[blocks[j / block_size_] * block_size_ + j % block_size_];
     if (col < 0) continue;
-    for (int i = 0; i < m; ++i) {
-      const int row = free_index_[blocks[i / block_size_] * block_size_ + i % block_size_];
-      if (row < 0) continue;
-      values[value_offset(row, col)] += k(i, j);
+    for (int b = 0; b < num_blocks; ++b) {
+      // The free unknowns of a block have consecutive reduced indices, so they sit next to each other in the
+      // column: one search per block.
+      const int* free = free_index_.data() + blocks[static_cast<std::size_t>(b)] * block_size_;
+      int first = 0;
+      while (first < block_size_ && free[first] < 0) ++first;
+      if (first == block_size_) continue;
+      int offset = value_offset(free[first], col);
+      for (int r = first; r < block_size_; ++r) {
+        if (free[r] < 0) continue;
+        assert(matrix_.innerIndexPtr()[offset] == free[r]);
+        values[offset++] += k(b * block_size_ + r, j);
+      }
     }
   }
 }
