@@ -140,7 +140,7 @@ bool ContactLoops::adjust_penalties() {
     off = true;
     // Eq. 54, in the direction that makes the penetration approach the aim: the new coefficient gives at the
     // aim the reaction the old one gives at the penetration reached (the law is linear in k_c).
-    const double factor = std::clamp(contact::normal_reaction(unit, -penetration) / target, 0.1, 10.0);
+    const double factor = std::clamp(contact::normal_reaction(unit, -penetration) / target, 1e-3, 1e3);
     penalty[z] *= factor;
   }
   return off;
