@@ -1,5 +1,6 @@
 // Contact outputs: the VTK picture of a contact geometry (intermediate geometries and particle pairs), its
-// .pvd collection, and the tables contact_final.csv and zones_final.csv, all for hand-built geometries.
+// .pvd collection, and the tables contact_final.csv and zones_final.csv, all for hand-built geometries and
+// contact states.
 
 #include <gtest/gtest.h>
 
@@ -49,6 +50,25 @@ contact::ContactGeometry two_zone_geometry() {
     g.elements.push_back(c);
   }
   return g;
+}
+
+/// One contact state per element of two_zone_geometry(): element 0 open, 1 sticking, 2 sliding, 3 closed
+/// without friction force (stick), 4 sliding. The friction forces lie in the plane normal to the element's
+/// normal, as the friction law makes them.
+std::vector<simulation::ContactState> five_states(const contact::ContactGeometry& g) {
+  const double reactions[5] = {0.0, 2.5, 0.75, 1e-3, 4.0};
+  const bool slip[5] = {false, false, true, false, true};
+  const double friction[5] = {0.0, 0.125, 0.225, 0.0, 1.2};  // |T| [N]
+  std::vector<simulation::ContactState> states(5);
+  for (std::size_t e = 0; e < 5; ++e) {
+    const Vec3& n = g.elements[e].normal;
+    const Vec3 t = n.cross(Vec3(1.0, 0.5 * static_cast<double>(e), -0.25)).normalized();
+    states[e].gap = g.elements[e].gap;
+    states[e].normal_reaction = reactions[e];
+    states[e].tangential = friction[e] * t;
+    states[e].slip = slip[e];
+  }
+  return states;
 }
 
 const std::vector<std::string> kBeamNames{"a", "b"};
@@ -131,6 +151,69 @@ TEST(ContactVtp, PolylinesPerZoneAndSegmentsPerElement) {
   for (std::size_t e = 0; e < 5; ++e)
     for (int k = 0; k < 3; ++k)
       expect_close(normal[6 + 3 * e + static_cast<std::size_t>(k)], g.elements[e].normal[k], "normal");
+}
+
+TEST(ContactVtp, ContactForcesOnTheSegmentsZerosOnThePolylines) {
+  const contact::ContactGeometry g = two_zone_geometry();
+  const std::vector<simulation::ContactState> states = five_states(g);
+  std::ostringstream out;
+  write_contact_vtp(out, g, 0.5, &states);
+  const auto root = testing::parse_xml(out.str());
+  const testing::XmlElement& data = root->one("PolyData").one("Piece").one("CellData");
+  EXPECT_EQ(data.all("DataArray").size(), 10u);
+  EXPECT_EQ(data.data_array("normal_force").attribute("type"), "Float64");
+  EXPECT_EQ(data.data_array("normal_force").attributes.count("NumberOfComponents"), 0u);  // a scalar
+  for (const char* name : {"force", "tangential_force"}) {
+    EXPECT_EQ(data.data_array(name).attribute("type"), "Float64") << name;
+    EXPECT_EQ(data.data_array(name).attribute("NumberOfComponents"), "3") << name;
+  }
+  EXPECT_EQ(data.data_array("state").attribute("type"), "Int32");
+  // Cells: 2 zone polylines (zeros), then the 5 element segments.
+  EXPECT_EQ(testing::numbers(data.data_array("state").text), (std::vector<double>{0, 0, 0, 1, 2, 1, 2}));
+  const auto normal_force = testing::numbers(data.data_array("normal_force").text);
+  const auto force = testing::numbers(data.data_array("force").text);
+  const auto tangential = testing::numbers(data.data_array("tangential_force").text);
+  ASSERT_EQ(normal_force.size(), 7u);
+  ASSERT_EQ(force.size(), 21u);
+  ASSERT_EQ(tangential.size(), 21u);
+  for (std::size_t k = 0; k < 6; ++k) {
+    EXPECT_EQ(force[k], 0.0);
+    EXPECT_EQ(tangential[k], 0.0);
+  }
+  EXPECT_EQ(normal_force[0], 0.0);
+  EXPECT_EQ(normal_force[1], 0.0);
+  for (std::size_t e = 0; e < 5; ++e) {
+    const simulation::ContactState& s = states[e];
+    const Vec3& n = g.elements[e].normal;
+    expect_close(normal_force[2 + e], s.normal_reaction, "normal_force " + std::to_string(e));
+    for (int k = 0; k < 3; ++k) {
+      const std::size_t i = 6 + 3 * e + static_cast<std::size_t>(k);
+      // The force on beam J: R_N along the normal from I to J, plus the friction force on J.
+      expect_close(force[i], s.normal_reaction * n[k] + s.tangential[k], "force " + std::to_string(e));
+      expect_close(tangential[i], s.tangential[k], "tangential_force " + std::to_string(e));
+    }
+  }
+  // The friction force is tangential: the normal component of `force` is R_N.
+  for (std::size_t e = 0; e < 5; ++e) {
+    const Vec3 f(force[6 + 3 * e], force[7 + 3 * e], force[8 + 3 * e]);
+    expect_close(f.dot(g.elements[e].normal), states[e].normal_reaction, "<force, n>");
+  }
+}
+
+TEST(ContactVtp, RejectsStatesThatDoNotMatchTheElements) {
+  const contact::ContactGeometry g = two_zone_geometry();
+  std::vector<simulation::ContactState> states = five_states(g);
+  states.pop_back();
+  std::ostringstream out;
+  EXPECT_THROW(write_contact_vtp(out, g, std::nullopt, &states), std::invalid_argument);
+  // An empty geometry takes an empty set of states and gives empty force arrays.
+  const std::vector<simulation::ContactState> none;
+  std::ostringstream empty;
+  write_contact_vtp(empty, contact::ContactGeometry{}, 1.0, &none);
+  const auto root = testing::parse_xml(empty.str());
+  const testing::XmlElement& data = root->one("PolyData").one("Piece").one("CellData");
+  for (const char* name : {"normal_force", "force", "tangential_force", "state"})
+    EXPECT_TRUE(testing::numbers(data.data_array(name).text).empty()) << name;
 }
 
 TEST(ContactVtp, EmptyGeometryGivesAValidEmptyDocument) {
@@ -272,6 +355,49 @@ TEST(ContactCsv, ElementRowsReadBackEqualTheInputs) {
   }
   // The self-contact rows name the same beam twice.
   EXPECT_EQ(lines[4].substr(0, 6), "1,b,b,");
+}
+
+TEST(ContactCsv, ForceColumnsFollowTheGeometryColumns) {
+  const contact::ContactGeometry g = two_zone_geometry();
+  const std::vector<simulation::ContactState> states = five_states(g);
+  ScratchDir dir;
+  write_contact_final(dir.path() / "contact_final.csv", g, kBeamNames, &states);
+  const auto lines = testing::split(testing::read_text(dir.path() / "contact_final.csv"), '\n');
+  ASSERT_EQ(lines.size(), 6u);
+  EXPECT_EQ(
+      lines[0],
+      "zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,x_j,y_j,z_j,nx,ny,"
+      "nz,gap,normal_force,tangential_force,tx,ty,tz,state");
+  const char* expected_state[5] = {"open", "stick", "slip", "stick", "slip"};
+  for (std::size_t e = 0; e < 5; ++e) {
+    const contact::ContactElement& c = g.elements[e];
+    const simulation::ContactState& s = states[e];
+    const auto f = testing::split(lines[1 + e], ',');
+    ASSERT_EQ(f.size(), 26u) << lines[1 + e];
+    // The geometry columns are those of the table without forces.
+    EXPECT_EQ(std::stoi(f[0]), c.zone);
+    expect_close(std::stod(f[3]), c.zeta, "zeta");
+    expect_close(std::stod(f[16]), c.normal.x(), "nx");
+    expect_close(std::stod(f[19]), c.gap, "gap");
+    expect_close(std::stod(f[20]), s.normal_reaction, "normal_force " + std::to_string(e));
+    const double magnitude =
+        std::sqrt(s.tangential.x() * s.tangential.x() + s.tangential.y() * s.tangential.y() +
+                  s.tangential.z() * s.tangential.z());
+    expect_close(std::stod(f[21]), magnitude, "tangential_force " + std::to_string(e));
+    for (int k = 0; k < 3; ++k)
+      expect_close(std::stod(f[22 + static_cast<std::size_t>(k)]), s.tangential[k], "t " + std::to_string(e));
+    EXPECT_EQ(f[25], expected_state[e]) << e;
+  }
+  EXPECT_EQ(status_name(contact_status(states[0])), "open");
+  EXPECT_EQ(static_cast<int>(contact_status(states[1])), 1);
+  EXPECT_EQ(static_cast<int>(contact_status(states[2])), 2);
+
+  // Without states the table keeps its 20 columns; with states that do not match the elements it is refused.
+  EXPECT_EQ(testing::split(testing::split(contact_final_csv(g, kBeamNames), '\n')[1], ',').size(), 20u);
+  const std::vector<simulation::ContactState> fewer(states.begin(), states.begin() + 4);
+  EXPECT_THROW(contact_final_csv(g, kBeamNames, &fewer), std::invalid_argument);
+  EXPECT_EQ(contact_csv_header(false) + ",normal_force,tangential_force,tx,ty,tz,state",
+            contact_csv_header(true));
 }
 
 TEST(ContactCsv, ZoneRowsReadBackEqualTheInputs) {

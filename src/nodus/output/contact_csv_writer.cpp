@@ -1,11 +1,46 @@
 #include "nodus/output/contact_csv_writer.hpp"
 
+#include <cassert>
+#include <regex>
 #include <stdexcept>
 #include <system_error>
+
+#include <fmt/format.h>
 
 #include "nodus/output/contact_table.hpp"
 
 namespace nodus::output {
+namespace {
+
+void create_folder(const std::filesystem::path& dir) {
+  std::error_code error;
+  std::filesystem::create_directories(dir, error);
+  if (error) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + error.message());
+}
+
+void remove_file(const std::filesystem::path& path) {
+  std::error_code error;
+  std::filesystem::remove(path, error);
+  if (error) throw std::runtime_error("cannot remove old file '" + path.string() + "': " + error.message());
+}
+
+}  // namespace
+
+const std::vector<simulation::ContactState>* contact_states_to_write(const simulation::Simulation& sim) {
+  const contact::ContactGeometry* geometry = sim.contact();
+  if (!geometry || !sim.contact_forces()) return nullptr;
+  const std::vector<simulation::ContactState>& states = sim.contact_states();
+  // Simulation::contact_states() holds one state per element of contact() after a converged step.
+  assert(states.size() == geometry->elements.size());
+  return states.size() == geometry->elements.size() ? &states : nullptr;
+}
+
+void keep_contact_states(const simulation::Simulation& sim, KeptContactStates& kept) {
+  if (const std::vector<simulation::ContactState>* states = contact_states_to_write(sim))
+    kept = *states;
+  else
+    kept.reset();
+}
 
 ContactCsvWriter::ContactCsvWriter(std::filesystem::path dir)
     : dir_(std::move(dir)),
@@ -13,23 +48,47 @@ ContactCsvWriter::ContactCsvWriter(std::filesystem::path dir)
       zones_path_(dir_ / "zones_final.csv") {}
 
 void ContactCsvWriter::on_start(const simulation::Simulation& /*sim*/) {
-  for (const auto& path : {contact_path_, zones_path_}) {
-    std::error_code error;
-    std::filesystem::remove(path, error);
-    if (error) throw std::runtime_error("cannot remove old file '" + path.string() + "': " + error.message());
-  }
+  for (const auto& path : {contact_path_, zones_path_}) remove_file(path);
+  states_.reset();
+}
+
+void ContactCsvWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& /*record*/) {
+  keep_contact_states(sim, states_);
 }
 
 void ContactCsvWriter::on_finish(const simulation::Simulation& sim,
                                  const simulation::RunSummary& /*summary*/) {
   const contact::ContactGeometry* geometry = sim.contact();
   if (!geometry) return;
-  std::error_code error;
-  std::filesystem::create_directories(dir_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
+  create_folder(dir_);
   const std::vector<std::string> names = beam_names(sim.model());
-  write_contact_final(contact_path_, *geometry, names);
+  write_contact_final(contact_path_, *geometry, names, kept_states(states_));
   write_zones_final(zones_path_, *geometry, names);
+}
+
+ContactCsvSeries::ContactCsvSeries(std::filesystem::path dir) : folder_(std::move(dir) / "contact") {}
+
+std::string ContactCsvSeries::file_name(int step) {
+  return fmt::format("contact_{:06d}.csv", step);
+}
+
+void ContactCsvSeries::begin() {
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder_, error)) return;
+  const std::regex series_file(R"(contact_[0-9]{6,}\.csv)");
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(folder_, error))
+    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), series_file))
+      stale.push_back(entry.path());
+  if (error) throw std::runtime_error("cannot list folder '" + folder_.string() + "': " + error.message());
+  for (const auto& path : stale) remove_file(path);
+}
+
+void ContactCsvSeries::write(int step, const contact::ContactGeometry& geometry,
+                             const std::vector<std::string>& beam_names,
+                             const std::vector<simulation::ContactState>* states) {
+  create_folder(folder_);
+  write_contact_final(folder_ / file_name(step), geometry, beam_names, states);
 }
 
 }  // namespace nodus::output

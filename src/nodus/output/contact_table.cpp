@@ -23,6 +23,30 @@ std::string beam_field(const std::vector<std::string>& beam_names, int index, st
 
 }  // namespace
 
+ContactStatus contact_status(const simulation::ContactState& state) {
+  if (state.normal_reaction == 0.0) return ContactStatus::open;
+  return state.slip ? ContactStatus::slip : ContactStatus::stick;
+}
+
+std::string_view status_name(ContactStatus status) {
+  switch (status) {
+    case ContactStatus::open:
+      return "open";
+    case ContactStatus::stick:
+      return "stick";
+    case ContactStatus::slip:
+      return "slip";
+  }
+  return "?";
+}
+
+void check_contact_states(const contact::ContactGeometry& geometry,
+                          const std::vector<simulation::ContactState>* states, std::string_view context) {
+  if (states && states->size() != geometry.elements.size())
+    throw std::invalid_argument(fmt::format("{}: {} contact states for {} contact elements", context,
+                                            states->size(), geometry.elements.size()));
+}
+
 void check_contact_geometry(const contact::ContactGeometry& geometry, std::string_view context) {
   const auto num_elements = static_cast<std::int64_t>(geometry.elements.size());
   for (std::size_t z = 0; z < geometry.zones.size(); ++z) {
@@ -59,16 +83,24 @@ std::vector<std::string> beam_names(const model::Model& model) {
   return names;
 }
 
-std::string contact_final_csv(const contact::ContactGeometry& geometry,
-                              const std::vector<std::string>& beam_names) {
-  constexpr std::string_view kContext = "contact_final.csv";
-  check_contact_geometry(geometry, kContext);
-  fmt::memory_buffer out;
-  fmt::format_to(
-      std::back_inserter(out),
+std::string contact_csv_header(bool with_forces) {
+  std::string header =
       "zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,x_j,y_j,z_j,"
-      "nx,ny,nz,gap\n");
-  for (const contact::ContactElement& e : geometry.elements) {
+      "nx,ny,nz,gap";
+  if (with_forces) header += ",normal_force,tangential_force,tx,ty,tz,state";
+  return header;
+}
+
+std::string contact_final_csv(const contact::ContactGeometry& geometry,
+                              const std::vector<std::string>& beam_names,
+                              const std::vector<simulation::ContactState>* states) {
+  constexpr std::string_view kContext = "contact element table";
+  check_contact_geometry(geometry, kContext);
+  check_contact_states(geometry, states, kContext);
+  fmt::memory_buffer out;
+  fmt::format_to(std::back_inserter(out), "{}\n", contact_csv_header(states != nullptr));
+  for (std::size_t k = 0; k < geometry.elements.size(); ++k) {
+    const contact::ContactElement& e = geometry.elements[k];
     const contact::ProximityZone& zone = geometry.zones[static_cast<std::size_t>(e.zone)];
     fmt::format_to(std::back_inserter(out), "{},{},{},{:.10g},{:.10g},{:.10g}", e.zone,
                    beam_field(beam_names, zone.beam_i, kContext),
@@ -78,7 +110,14 @@ std::string contact_final_csv(const contact::ContactGeometry& geometry,
       fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g}", v.x(), v.y());
     for (const contact::Vec3& v : {e.position_i, e.position_j, e.normal})
       fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g}", v.x(), v.y(), v.z());
-    fmt::format_to(std::back_inserter(out), ",{:.10g}\n", e.gap);
+    fmt::format_to(std::back_inserter(out), ",{:.10g}", e.gap);
+    if (states) {
+      const simulation::ContactState& s = (*states)[k];
+      fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}",
+                     s.normal_reaction, s.tangential.norm(), s.tangential.x(), s.tangential.y(),
+                     s.tangential.z(), status_name(contact_status(s)));
+    }
+    out.push_back('\n');
   }
   return fmt::to_string(out);
 }
@@ -103,8 +142,9 @@ std::string zones_final_csv(const contact::ContactGeometry& geometry,
 }
 
 void write_contact_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
-                         const std::vector<std::string>& beam_names) {
-  write_file_atomically(path, contact_final_csv(geometry, beam_names));
+                         const std::vector<std::string>& beam_names,
+                         const std::vector<simulation::ContactState>* states) {
+  write_file_atomically(path, contact_final_csv(geometry, beam_names, states));
 }
 
 void write_zones_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,

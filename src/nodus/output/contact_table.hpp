@@ -1,9 +1,11 @@
 #pragma once
 /// The tables of a contact geometry (contact::ContactGeometry), written as DIR/contact_final.csv (one row
-/// per contact element) and DIR/zones_final.csv (one row per proximity zone) at the end of a run.
+/// per contact element) and DIR/zones_final.csv (one row per proximity zone) at the end of a run, and as
+/// DIR/contact/contact_NNNNNN.csv at the VTK output steps (output.contact_csv). With contact forces the
+/// element rows also carry the forces of the element's simulation::ContactState.
 /// Conventions (docs/output.md): the normal points from the particle on beam I to the particle on beam J;
-/// gap = <x_j - x_i, n>, negative when the surfaces overlap; zones and elements are numbered from 0 in the
-/// order of the geometry.
+/// gap = <x_j - x_i, n>, negative when the surfaces overlap; the contact force on J is R_N n + T (on I its
+/// opposite), T the friction force on J; zones and elements are numbered from 0 in the order of the geometry.
 
 #include <filesystem>
 #include <optional>
@@ -13,8 +15,28 @@
 
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
 
 namespace nodus::output {
+
+/// What a contact element does in a state: the `state` column of the contact tables, the `state` cell array
+/// of the contact VTK files (the values are those of the VTK array).
+enum class ContactStatus {
+  open = 0,   ///< R_N = 0: the surfaces are apart, no force
+  stick = 1,  ///< R_N > 0, friction below mu R_N (also every closed element without friction)
+  slip = 2,   ///< R_N > 0, sliding with friction at mu R_N
+};
+
+/// The status of an element in `state`: open if R_N == 0, else slip or stick after ContactState::slip.
+ContactStatus contact_status(const simulation::ContactState& state);
+
+/// "open", "stick" or "slip".
+std::string_view status_name(ContactStatus status);
+
+/// Throws std::invalid_argument (one line starting with `context`) if `states` is given and does not hold
+/// one state per contact element of `geometry`.
+void check_contact_states(const contact::ContactGeometry& geometry,
+                          const std::vector<simulation::ContactState>* states, std::string_view context);
 
 /// Throws std::invalid_argument (one line starting with `context`) if a zone with contact elements lists
 /// elements outside geometry.elements, or an element's zone index is not a zone of the geometry.
@@ -28,15 +50,21 @@ std::optional<double> smallest_gap(const contact::ContactGeometry& geometry,
 /// The beam names of `model`, by beam index.
 std::vector<std::string> beam_names(const model::Model& model);
 
-/// The whole contact_final.csv text: header
+/// The header line of the contact element table (no line end):
 /// `zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,x_j,y_j,z_j,nx,ny,nz,gap`,
-/// then one row per contact element in order: its zone index, the names of the zone's beams I and J
-/// (`beam_names` by beam index), zeta [-], the reference arc lengths xi3 of the two particles [mm], their
-/// section coordinates (xi1, xi2) [mm], their current positions [mm], the unit normal [-] and the gap [mm];
-/// numbers with ten significant digits. Throws std::invalid_argument on an inconsistent geometry
-/// (check_contact_geometry) or a beam index without a name.
+/// followed `with_forces` by `normal_force,tangential_force,tx,ty,tz,state`.
+std::string contact_csv_header(bool with_forces);
+
+/// The whole contact_final.csv text: contact_csv_header(states != nullptr), then one row per contact element
+/// in order: its zone index, the names of the zone's beams I and J (`beam_names` by beam index), zeta [-],
+/// the reference arc lengths xi3 of the two particles [mm], their section coordinates (xi1, xi2) [mm], their
+/// current positions [mm], the unit normal [-] and the gap [mm]; with `states` (one per element, same order),
+/// then the element's R_N [N], |T| [N], the friction force T on beam J [N] and its status_name; numbers with
+/// ten significant digits. Throws std::invalid_argument on an inconsistent geometry (check_contact_geometry),
+/// a beam index without a name or states that do not match the elements (check_contact_states).
 std::string contact_final_csv(const contact::ContactGeometry& geometry,
-                              const std::vector<std::string>& beam_names);
+                              const std::vector<std::string>& beam_names,
+                              const std::vector<simulation::ContactState>* states = nullptr);
 
 /// The whole zones_final.csv text: header `zone,beam_i,beam_j,a,b,c,d,contact_elements,min_gap`, then one row
 /// per zone in order: its index, the names of beams I and J, the intervals [a, b] on I and [c, d] on J [mm],
@@ -45,9 +73,10 @@ std::string contact_final_csv(const contact::ContactGeometry& geometry,
 std::string zones_final_csv(const contact::ContactGeometry& geometry,
                             const std::vector<std::string>& beam_names);
 
-/// Writes contact_final_csv(geometry, beam_names) to `path` (temporary file + rename).
+/// Writes contact_final_csv(geometry, beam_names, states) to `path` (temporary file + rename).
 void write_contact_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
-                         const std::vector<std::string>& beam_names);
+                         const std::vector<std::string>& beam_names,
+                         const std::vector<simulation::ContactState>* states = nullptr);
 
 /// Writes zones_final_csv(geometry, beam_names) to `path` (temporary file + rename).
 void write_zones_final(const std::filesystem::path& path, const contact::ContactGeometry& geometry,

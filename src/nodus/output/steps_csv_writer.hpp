@@ -1,7 +1,7 @@
 #pragma once
 /// DIR/steps.csv: one row per converged load step (step counters, Newton statistics, the size of the contact
-/// geometry and the force and moment on every condition's section). Columns are documented in
-/// docs/output.md.
+/// geometry, what the contact loops did and the contact forces they reached, and the force and moment on
+/// every condition's section). Columns are documented in docs/output.md.
 
 #include <cstdio>
 #include <filesystem>
@@ -13,13 +13,16 @@
 namespace nodus::output {
 
 /// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment,zones,
-/// contact_elements, then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
+/// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
+/// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
 std::string steps_csv_header(const std::vector<std::string>& condition_names);
 
 /// One data line (no line end) for `record`, the stage column holding `stage_name`; numbers with ten
-/// significant digits: time [s], residual [N], increment [-], forces [N], moments [N mm]; `zones` and
-/// `contact_elements` are the record's counts (0 without contact). Sections missing from the record (fewer
-/// than `num_conditions`) give empty fields.
+/// significant digits: time [s], residual [N], increment [-], penetration_ratio [-], forces [N], moments
+/// [N mm]; `zones` and `contact_elements` are the record's counts (0 without contact); `detections`,
+/// `normal_iterations`, `penetration_ratio`, `normal_force` (sum of R_N), `tangential_force` (sum of |R_T|)
+/// and `slipping` are the record's contact-loop figures (0 without contact forces). Sections missing from the
+/// record (fewer than `num_conditions`) give empty fields.
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions);
 

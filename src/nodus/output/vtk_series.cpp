@@ -68,7 +68,8 @@ void VtkSeries::begin(bool contact) {
 }
 
 void VtkSeries::write(int step, double time, const model::Model& model, const Eigen::VectorXd& x,
-                      const contact::ContactGeometry* contact) {
+                      const contact::ContactGeometry* contact,
+                      const std::vector<simulation::ContactState>* states) {
   if (!begun_) begin(contact != nullptr);
   const std::string name = file_name(step);
   write_vtp(dir_ / "vtk" / name, model, x, tube_sides_, time);
@@ -76,7 +77,7 @@ void VtkSeries::write(int step, double time, const model::Model& model, const Ei
   write_pvd(pvd_path(), beams_.entries);
   if (contact) {
     const std::string contact_name = contact_file_name(step);
-    write_contact_vtp(dir_ / "vtk" / contact_name, *contact, time);
+    write_contact_vtp(dir_ / "vtk" / contact_name, *contact, time, states);
     contact_.add(step, time, "vtk/" + contact_name);
     write_pvd(contact_pvd_path(), contact_.entries);
   }

@@ -13,6 +13,7 @@
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/output/vtk_format.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
 
 namespace nodus::output {
 
@@ -27,9 +28,11 @@ class VtkSeries {
   void begin(bool contact = false);
   /// Writes DIR/vtk/step_NNNNNN.vtp (NNNNNN = `step`, six digits at least) of state `x` at load time `time`
   /// [s], then rewrites result.pvd. With `contact` (not null), then also writes DIR/vtk/contact_NNNNNN.vtp of
-  /// that geometry and rewrites contact.pvd. Writing a step again replaces its files and entries.
+  /// that geometry, with the contact forces of `states` if given (one per element of `contact`; see
+  /// write_contact_vtp), and rewrites contact.pvd. Writing a step again replaces its files and entries.
   void write(int step, double time, const model::Model& model, const Eigen::VectorXd& x,
-             const contact::ContactGeometry* contact = nullptr);
+             const contact::ContactGeometry* contact = nullptr,
+             const std::vector<simulation::ContactState>* states = nullptr);
 
   bool begun() const { return begun_; }
   /// Whether the picture of the beams at `step` was written.

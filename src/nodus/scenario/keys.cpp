@@ -128,7 +128,7 @@ constexpr std::array kKeys{
   KeyDoc{"output.progress_seconds", "number", "s", "1", ">= 0",
          "minimum interval between progress lines on stderr"},
   KeyDoc{"output.contact_csv", "bool", "", "false", "",
-         "with contact forces: also write contact/contact_NNNNNN.csv (every contact element) at every VTK "
+         "with contact: also write contact/contact_NNNNNN.csv (every contact element) at every VTK "
          "output step"},
 
   KeyDoc{"contact", "map", "", "-", "",

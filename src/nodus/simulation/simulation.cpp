@@ -170,7 +170,7 @@ void Simulation::detect_contact() {
 Simulation::~Simulation() = default;
 
 const std::vector<ContactState>& Simulation::contact_states() const {
-  return problem_->contact_states();
+  return contact_states_;
 }
 
 const Eigen::VectorXd& Simulation::state() const {
@@ -260,6 +260,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
           summary.newton_iterations += r.newton.iterations;
           if (loops) {
             contact_ = problem_->contact_geometry();
+            contact_states_ = problem_->contact_states();  // of the committed state
             const ContactStepStats& c = loops->stats();
             record.detections = c.detections;
             record.normal_iterations = c.normal_iterations;

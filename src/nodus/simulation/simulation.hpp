@@ -78,7 +78,8 @@ class Simulation {
   /// The contact laws, defaults resolved (meaningful when contact forces are on).
   const ContactLawSettings& contact_laws() const { return laws_; }
   bool contact_forces() const { return contact_forces_; }
-  /// The state of each element of contact() at the end of the last step (empty without contact forces).
+  /// The state of each element of contact() at the last converged step (empty without contact forces or
+  /// before the first step).
   const std::vector<ContactState>& contact_states() const;
   /// The detection parameters, defaults resolved (meaningful when contact() is not null).
   const contact::DetectionParameters& detection_parameters() const { return detection_; }
@@ -100,6 +101,7 @@ class Simulation {
   contact::DetectionParameters detection_;
   std::vector<int> contact_beams_;  ///< the beams in contact now (stages take tools out and put them back)
   contact::ContactGeometry contact_;
+  std::vector<ContactState> contact_states_;  ///< per element of contact_, at the last converged step
   double detection_seconds_ = 0.0;
   bool contact_forces_ = false;
   ContactLawSettings laws_;
