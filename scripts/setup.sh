@@ -3,9 +3,10 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libyaml-cpp-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libopenblas0-pthread)
-# libopenblas0-pthread: CHOLMOD's supernodal factorisation runs on the system BLAS; Debian's default
-# (netlib) is 4.6x slower on the contact tangent of a 27-fibre bundle (docs/performance.md).
+  libopenblas0-openmp)
+# libopenblas0-openmp: CHOLMOD's supernodal factorisation runs on the system BLAS; Debian's default
+# (netlib) is 4.6x slower on the contact tangent of a 27-fibre bundle (docs/performance.md). The OpenMP
+# build shares its threads with nodus's OpenMP regions instead of a second pool competing for the cores.
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")

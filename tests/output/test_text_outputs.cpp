@@ -110,6 +110,8 @@ TEST(Summary, JsonHoldsEveryField) {
   d.converged = false;
   d.wall_seconds = 1.5;
   d.detection_seconds = 0.25;
+  d.assembly_seconds = 0.5;
+  d.linear_solve_seconds = 0.125;
   d.failure = "stage \"bend\": no convergence";
   d.final_time = 0.75;
   d.scenario = "scenarios/two_beams.yaml";
@@ -127,10 +129,12 @@ TEST(Summary, JsonHoldsEveryField) {
   EXPECT_EQ(j.at("converged"), false);
   EXPECT_EQ(j.at("wall_seconds"), 1.5);
   EXPECT_EQ(j.at("detection_seconds"), 0.25);
+  EXPECT_EQ(j.at("assembly_seconds"), 0.5);
+  EXPECT_EQ(j.at("linear_solve_seconds"), 0.125);
   EXPECT_EQ(j.at("failure"), d.failure);
   EXPECT_EQ(j.at("final_time"), 0.75);
   EXPECT_EQ(j.at("scenario"), d.scenario);
-  EXPECT_EQ(j.size(), 12u);
+  EXPECT_EQ(j.size(), 14u);
 #else
   for (const char* key : {"\"dofs\": 72", "\"nodes\": 8", "\"elements\": 3", "\"beams\": 2", "\"steps\": 40",
                           "\"newton_iterations\": 163", "\"converged\": false", "\"wall_seconds\": 1.5",

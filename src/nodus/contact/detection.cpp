@@ -453,6 +453,11 @@ bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactE
   return true;
 }
 
+/// Below this many beam elements detection runs on one thread: its parallel regions would last less than the
+/// cost of waking the threads (on a busy machine, far more: the 64-element example spent 1 s instead of
+/// 2.4 ms in detection while other processes held the cores).
+constexpr std::size_t kParallelElements = 1000;
+
 ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
                        const DetectionParameters& parameters, const std::vector<int>& beams,
                        const ContactGeometry* previous) {
@@ -475,7 +480,7 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
   // number of threads.
   const auto num_active = static_cast<std::ptrdiff_t>(active.size());
   std::vector<std::vector<RawZone>> found(active.size());
-#pragma omp parallel for schedule(dynamic)
+#pragma omp parallel for schedule(dynamic) if (elements.size() >= kParallelElements)
   for (std::ptrdiff_t k = 0; k < num_active; ++k)
     found[static_cast<std::size_t>(k)] =
         zones_from_beam(curves, tree, active[static_cast<std::size_t>(k)], prm);
@@ -485,7 +490,7 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
   const std::vector<ProximityZone> zones = merge(std::move(raw), previous);
   const auto num_zones = static_cast<std::ptrdiff_t>(zones.size());
   std::vector<std::vector<ContactElement>> built(zones.size());
-#pragma omp parallel for schedule(dynamic)
+#pragma omp parallel for schedule(dynamic) if (elements.size() >= kParallelElements)
   for (std::ptrdiff_t k = 0; k < num_zones; ++k) {
     const ProximityZone& zone = zones[static_cast<std::size_t>(k)];
     const double spacing = prm.element_spacing > 0.0

@@ -20,6 +20,8 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.converged = summary.converged;
   data.wall_seconds = summary.wall_seconds;
   data.detection_seconds = summary.detection_seconds;
+  data.assembly_seconds = summary.assembly_seconds;
+  data.linear_solve_seconds = summary.linear_solve_seconds;
   data.failure = summary.failure;
   data.final_time = sim.time();
   data.scenario = sim.scenario().path;
@@ -36,6 +38,8 @@ std::string summary_json(const SummaryData& data) {
   j["final_time"] = data.final_time;
   j["wall_seconds"] = data.wall_seconds;
   j["detection_seconds"] = data.detection_seconds;
+  j["assembly_seconds"] = data.assembly_seconds;
+  j["linear_solve_seconds"] = data.linear_solve_seconds;
   j["beams"] = data.beams;
   j["nodes"] = data.nodes;
   j["elements"] = data.elements;

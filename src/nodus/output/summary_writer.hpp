@@ -14,14 +14,16 @@ struct SummaryData {
   int nodes = 0;
   int elements = 0;
   int beams = 0;
-  int steps = 0;                   ///< converged load steps
-  int newton_iterations = 0;       ///< over all converged steps
-  bool converged = false;          ///< every stage completed
-  double wall_seconds = 0.0;       ///< wall-clock time of the run [s]
-  double detection_seconds = 0.0;  ///< of which in contact detection [s]
-  std::string failure;             ///< why the run stopped early; empty if it did not
-  double final_time = 0.0;         ///< load time of the last converged state [s]
-  std::string scenario;            ///< path of the scenario file
+  int steps = 0;                      ///< converged load steps
+  int newton_iterations = 0;          ///< over all converged steps
+  bool converged = false;             ///< every stage completed
+  double wall_seconds = 0.0;          ///< wall-clock time of the run [s]
+  double detection_seconds = 0.0;     ///< of which in contact detection [s]
+  double assembly_seconds = 0.0;      ///< of which in residual and tangent evaluations inside Newton [s]
+  double linear_solve_seconds = 0.0;  ///< of which in sparse analysis, factorisation and solves [s]
+  std::string failure;                ///< why the run stopped early; empty if it did not
+  double final_time = 0.0;            ///< load time of the last converged state [s]
+  std::string scenario;               ///< path of the scenario file
 };
 
 /// Collects the summary of a finished run.
