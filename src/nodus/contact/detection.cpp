@@ -365,42 +365,43 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   return true;
 }
 
-/// Where along the zone the gap is smallest, when the gap has a marked minimum there (a crossing): the
-/// uniform grid of elements of spacing `step` in zeta may miss it by step / 2, which for two circular beams
-/// crossing at a steep angle leaves a gap larger than the true one by about (h_c / 2)^2 / (4 R) (0.0017 mm
-/// for R = 0.1 mm, h_c = 0.05 mm: close to the paper's p_max). Returns the remainder of the location
-/// modulo `step`, in [0, step), that shifts the grid onto it; 0 when the gap is flat (parallel parts), so
-/// that a noisy minimum does not move the elements from one detection to the next.
-double gap_minimum(const BeamCurves& curves, const ProximityZone& zone, double step) {
-  double best = INFINITY, best_zeta = -1.0;
-  std::vector<std::pair<double, double>> samples;  // (zeta, gap)
-  for (double zeta = 0.0; zeta <= 1.0 + 1e-12; zeta += step) {
+/// The contact elements of a zone: the paper's uniform grid of `count` elements (Eq. 46-48), shifted when the
+/// gap has a marked minimum (a crossing) so that one element sits at it. The uniform grid may miss the
+/// minimum by half a spacing, which for two circular beams crossing at a steep angle leaves a gap larger than
+/// the true one by about (h_c / 2)^2 / (4 R) (0.0017 mm for R = 0.1 mm, h_c = 0.05 mm: close to the paper's
+/// p_max). The minimum is the vertex of the parabola through the smallest gap of the uniform grid and its
+/// two neighbours; the grid is shifted only when that vertex lies lower by more than 1e-4 R, so that on
+/// parallel parts, where the gap is flat and its minimum is noise, the elements keep their places from one
+/// detection to the next.
+std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count) {
+  const double step = 1.0 / (count - 1);
+  std::vector<ContactElement> uniform;
+  std::size_t smallest = 0;
+  for (int i = 0; i < count; ++i) {
     ContactElement e;
-    if (!make_element(curves, zone, std::min(zeta, 1.0), e)) continue;
-    samples.emplace_back(std::min(zeta, 1.0), e.gap);
-    if (e.gap < best) {
-      best = e.gap;
-      best_zeta = samples.back().first;
-    }
+    if (!make_element(curves, zone, static_cast<double>(i) / (count - 1), e)) continue;
+    if (!uniform.empty() && e.gap < uniform[smallest].gap) smallest = uniform.size();
+    uniform.push_back(e);
   }
-  const auto k = static_cast<std::size_t>(
-      std::find_if(samples.begin(), samples.end(), [&](const auto& p) { return p.first == best_zeta; }) -
-      samples.begin());
-  if (k == 0 || k + 1 >= samples.size()) return 0.0;
+  const std::size_t k = smallest;
+  if (k == 0 || k + 1 >= uniform.size()) return uniform;
   const double tol = 1e-9 * step;
-  if (std::abs(samples[k].first - samples[k - 1].first - step) > tol ||
-      std::abs(samples[k + 1].first - samples[k].first - step) > tol)
-    return 0.0;  // a missing neighbour
-  // The parabola through the smallest sample and its neighbours (equally spaced).
-  const double g0 = samples[k - 1].second, g1 = samples[k].second, g2 = samples[k + 1].second;
+  if (std::abs(uniform[k].zeta - uniform[k - 1].zeta - step) > tol ||
+      std::abs(uniform[k + 1].zeta - uniform[k].zeta - step) > tol)
+    return uniform;  // a neighbour is missing
+  const double g0 = uniform[k - 1].gap, g1 = uniform[k].gap, g2 = uniform[k + 1].gap;
   const double curvature = g0 - 2.0 * g1 + g2;
-  if (!(curvature > 0.0)) return 0.0;
-  const double shift = 0.5 * (g0 - g2) / curvature;  // in units of step, in [-1/2, 1/2]
+  if (!(curvature > 0.0)) return uniform;
   const double gain = 0.125 * (g0 - g2) * (g0 - g2) / curvature;
-  const double threshold = 1e-4 * 0.5 * (curves.radius(zone.beam_i) + curves.radius(zone.beam_j));
-  if (!(gain > threshold)) return 0.0;
-  const double zeta = samples[k].first + shift * step;
-  return std::fmod(zeta, step);
+  if (!(gain > 1e-4 * 0.5 * (curves.radius(zone.beam_i) + curves.radius(zone.beam_j)))) return uniform;
+  const double shift = 0.5 * (g0 - g2) / curvature;                       // in units of step, in [-1/2, 1/2]
+  const double anchor = std::fmod(uniform[k].zeta + shift * step, step);  // in [0, step)
+  std::vector<ContactElement> shifted;
+  for (int i = 0; anchor + i * step <= 1.0 + 1e-12; ++i) {
+    ContactElement e;
+    if (make_element(curves, zone, std::min(1.0, anchor + i * step), e)) shifted.push_back(e);
+  }
+  return shifted;
 }
 
 }  // namespace
@@ -499,20 +500,7 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
                                                 model.beam(zone.beam_j).element_length());
     const int count = std::max(
         2, static_cast<int>(std::ceil(std::min(zone.b - zone.a, std::abs(zone.d - zone.c)) / spacing)));
-    const double step = 1.0 / (count - 1);
-    const double anchor = gap_minimum(curves, zone, step);
-    // Eq. 46-48, with the grid shifted so that one element sits where the gap is smallest (anchor in
-    // [0, step)); without a marked minimum the anchor is 0 and the grid is the paper's.
-    for (int i = 0; anchor + i * step <= 1.0 + 1e-12; ++i) {
-      ContactElement element;
-      if (make_element(curves, zone, std::min(1.0, anchor + i * step), element))
-        built[static_cast<std::size_t>(k)].push_back(element);
-    }
-    if (anchor > 0.0) {  // the start of the zone too
-      ContactElement element;
-      if (make_element(curves, zone, 0.0, element))
-        built[static_cast<std::size_t>(k)].insert(built[static_cast<std::size_t>(k)].begin(), element);
-    }
+    built[static_cast<std::size_t>(k)] = zone_elements(curves, zone, count);
   }
 
   ContactGeometry result;

@@ -50,7 +50,6 @@ class Conditions {
   ConditionKind kind(int c) const { return at(c).kind; }
   /// The node of a motion or load; the first node of a rigid condition.
   int node(int c) const { return at(c).nodes.front(); }
-  bool rigid(int c) const { return at(c).rigid; }
   bool active(int c) const { return at(c).active; }
 
   /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
