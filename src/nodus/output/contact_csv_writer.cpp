@@ -30,16 +30,10 @@ const std::vector<simulation::ContactState>* contact_states_to_write(const simul
   const contact::ContactGeometry* geometry = sim.contact();
   if (!geometry || !sim.contact_forces()) return nullptr;
   const std::vector<simulation::ContactState>& states = sim.contact_states();
+  if (states.empty()) return nullptr;  // no step converged yet
   // Simulation::contact_states() holds one state per element of contact() after a converged step.
   assert(states.size() == geometry->elements.size());
   return states.size() == geometry->elements.size() ? &states : nullptr;
-}
-
-void keep_contact_states(const simulation::Simulation& sim, KeptContactStates& kept) {
-  if (const std::vector<simulation::ContactState>* states = contact_states_to_write(sim))
-    kept = *states;
-  else
-    kept.reset();
 }
 
 ContactCsvWriter::ContactCsvWriter(std::filesystem::path dir)
@@ -49,11 +43,6 @@ ContactCsvWriter::ContactCsvWriter(std::filesystem::path dir)
 
 void ContactCsvWriter::on_start(const simulation::Simulation& /*sim*/) {
   for (const auto& path : {contact_path_, zones_path_}) remove_file(path);
-  states_.reset();
-}
-
-void ContactCsvWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& /*record*/) {
-  keep_contact_states(sim, states_);
 }
 
 void ContactCsvWriter::on_finish(const simulation::Simulation& sim,
@@ -62,7 +51,7 @@ void ContactCsvWriter::on_finish(const simulation::Simulation& sim,
   if (!geometry) return;
   create_folder(dir_);
   const std::vector<std::string> names = beam_names(sim.model());
-  write_contact_final(contact_path_, *geometry, names, kept_states(states_));
+  write_contact_final(contact_path_, *geometry, names, contact_states_to_write(sim));
   write_zones_final(zones_path_, *geometry, names);
 }
 

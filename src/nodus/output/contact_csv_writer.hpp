@@ -4,7 +4,6 @@
 /// (output.contact_csv). See contact_table.hpp for the format.
 
 #include <filesystem>
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,23 +11,10 @@
 
 namespace nodus::output {
 
-/// The contact states to write with sim.contact() for the step just converged (call it from
-/// StepObserver::on_step, where they are those of the converged state): &sim.contact_states() when the run
-/// has contact forces, null otherwise (no contact, or detection only: the contact files then carry no
-/// forces). The initial state has none either: no contact force is computed before the first step.
+/// The contact states to write with sim.contact(): &sim.contact_states() (those of the last converged step)
+/// when the run has contact forces and a step has converged, null otherwise (no contact, detection only, or
+/// the initial state, before any contact force is computed: the contact files then carry no forces).
 const std::vector<simulation::ContactState>* contact_states_to_write(const simulation::Simulation& sim);
-
-/// A copy of the contact states of the last converged step, kept for the files written when the run
-/// finishes: after a step that failed, Simulation::contact_states() may hold those of the failed attempt.
-using KeptContactStates = std::optional<std::vector<simulation::ContactState>>;
-
-/// Stores contact_states_to_write(sim) into `kept` (empties it when null).
-void keep_contact_states(const simulation::Simulation& sim, KeptContactStates& kept);
-
-/// The kept states as a pointer for the writers (null when empty).
-inline const std::vector<simulation::ContactState>* kept_states(const KeptContactStates& kept) {
-  return kept ? &*kept : nullptr;
-}
 
 /// When the run has contact (Simulation::contact() not null), writes DIR/contact_final.csv and
 /// DIR/zones_final.csv when the run finishes (converged or not: the last converged state);
@@ -41,7 +27,6 @@ class ContactCsvWriter : public simulation::StepObserver {
   explicit ContactCsvWriter(std::filesystem::path dir);
 
   void on_start(const simulation::Simulation& sim) override;
-  void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
   void on_finish(const simulation::Simulation& sim, const simulation::RunSummary& summary) override;
 
   /// DIR/contact_final.csv.
@@ -53,7 +38,6 @@ class ContactCsvWriter : public simulation::StepObserver {
   std::filesystem::path dir_;
   std::filesystem::path contact_path_;
   std::filesystem::path zones_path_;
-  KeptContactStates states_;  ///< of the last converged step
 };
 
 /// The series DIR/contact/contact_NNNNNN.csv: the contact element table (contact_final_csv) of the state of

@@ -14,7 +14,7 @@ VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, int every, int tube_
 }
 
 void VtkSeriesWriter::write(const simulation::Simulation& sim, int step, double time) {
-  const std::vector<simulation::ContactState>* states = kept_states(states_);
+  const std::vector<simulation::ContactState>* states = contact_states_to_write(sim);
   series_.write(step, time, sim.model(), sim.state(), sim.contact(), states);
   if (contact_csv_ && sim.contact())
     contact_tables_.write(step, *sim.contact(), beam_names(sim.model()), states);
@@ -25,13 +25,11 @@ void VtkSeriesWriter::on_start(const simulation::Simulation& sim) {
   contact_tables_.begin();
   contact_csv_ = sim.scenario().output.contact_csv;
   last_step_ = 0;
-  states_.reset();
   write(sim, 0, sim.time());
 }
 
 void VtkSeriesWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {
   last_step_ = record.step;
-  keep_contact_states(sim, states_);
   if (every_ > 0 && record.step % every_ == 0) write(sim, record.step, record.time);
 }
 

@@ -30,8 +30,7 @@ class VtkSeriesWriter : public simulation::StepObserver {
   const ContactCsvSeries& contact_tables() const { return contact_tables_; }
 
  private:
-  /// The files of output step `step` (load time `time` [s]) from the current state of `sim` and the kept
-  /// contact states.
+  /// The files of output step `step` (load time `time` [s]) from the current state of `sim`.
   void write(const simulation::Simulation& sim, int step, double time);
 
   VtkSeries series_;
@@ -39,7 +38,6 @@ class VtkSeriesWriter : public simulation::StepObserver {
   int every_;
   bool contact_csv_ = false;  ///< output.contact_csv of the running scenario
   int last_step_ = 0;         ///< last converged step seen (0: the initial state)
-  KeptContactStates states_;  ///< contact states of that step (none for the initial state)
 };
 
 }  // namespace nodus::output
