@@ -1,21 +1,27 @@
 // nodus: quasi-static equilibrium of elastic beam assemblies under large deformations.
 //
 //   nodus run SCENARIO.yaml --out DIR     run a scenario, write results into DIR
+//   nodus run SCENARIO.yaml --out DIR --resume
+//                                         continue an interrupted run from its newest checkpoint in DIR
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
 //   nodus keys                            print the table of scenario keys (markdown)
 //
-// Exit status: 0 success, 1 internal error, 2 bad input (nothing written), 3 the run stopped without
-// converging (the converged steps are kept in DIR).
+// Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
+// scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
+// converged steps are kept in DIR) or was stopped by --stop-after-steps.
 
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include "nodus/output/checkpoint.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/logging.hpp"
@@ -28,37 +34,210 @@
 
 namespace {
 
+namespace fs = std::filesystem;
+
 constexpr int kBadInput = 2;
 constexpr int kNotConverged = 3;
 
-int run(const std::string& scenario_path, const std::filesystem::path& out, bool quiet) {
-  nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(scenario_path);
-  if (!quiet)
-    spdlog::info("scenario {} resolved as:\n{}", scenario_path, nodus::scenario::describe(scenario));
-  // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node);
-  // it happens before anything is written.
+/// What `nodus run` was asked to do.
+struct RunRequest {
+  std::string scenario_path;
+  fs::path out;
+  bool quiet = false;
+  bool resume = false;
+  int stop_after_steps = 0;  ///< for tests: stop as if killed after this many converged steps (0: never)
+};
+
+/// The output writers of one run (the main run, or a branch) into `dir`.
+class RunOutputs {
+ public:
+  RunOutputs(const fs::path& dir, const nodus::scenario::Scenario& scenario, bool quiet, bool write_summary)
+      : steps_(dir),
+        vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
+        final_nodes_(dir),
+        contact_tables_(dir),
+        summary_(dir, write_summary),
+        checkpoints_(dir, scenario.output.checkpoint_every),
+        progress_(scenario.output.progress_seconds) {
+    // The checkpoint comes after the files of its step, so that they are complete up to it.
+    observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &summary_, &checkpoints_};
+    if (!quiet) observers_.push_back(&progress_);
+  }
+  const std::vector<nodus::simulation::StepObserver*>& observers() const { return observers_; }
+  const nodus::output::SummaryWriter& summary() const { return summary_; }
+
+ private:
+  nodus::output::StepsCsvWriter steps_;
+  nodus::output::VtkSeriesWriter vtk_;
+  nodus::output::FinalNodesWriter final_nodes_;
+  nodus::output::ContactCsvWriter contact_tables_;
+  nodus::output::SummaryWriter summary_;
+  nodus::output::CheckpointWriter checkpoints_;
+  nodus::output::ProgressReporter progress_;
+  std::vector<nodus::simulation::StepObserver*> observers_;
+};
+
+std::string describe_position(const nodus::output::CheckpointInfo& info,
+                              const nodus::scenario::Scenario& scenario) {
+  const auto& stages = scenario.stages;
+  const std::string where =
+      info.stage_begun
+          ? fmt::format("inside stage '{}'", stages.at(static_cast<std::size_t>(info.stage)).name)
+      : info.stage == 0
+          ? std::string("at the start")
+          : fmt::format("at the end of stage '{}'", stages.at(static_cast<std::size_t>(info.stage - 1)).name);
+  return fmt::format("step {}, load time {:.6g} s, {}", info.steps, info.time, where);
+}
+
+/// The checkpoint a branch starts from: the main run's at the end of its `from` stage.
+fs::path branch_start_checkpoint(const fs::path& out, const nodus::scenario::Scenario& scenario,
+                                 const nodus::scenario::BranchSpec& branch) {
+  return out / "checkpoints" /
+         nodus::output::checkpoint_file_name(branch.from,
+                                             scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
+}
+
+/// Where a branch starts when the run resumes: finished (its summary.json exists), from its own newest
+/// checkpoint, or from the main run's checkpoint of its `from` stage.
+struct BranchStart {
+  bool finished = false;
+  std::optional<nodus::output::CheckpointInfo> own;  ///< its newest checkpoint, when it has one
+};
+
+int run(const RunRequest& request) {
+  nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(request.scenario_path);
+  if (!request.quiet)
+    spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, nodus::scenario::describe(scenario));
+  // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
+  // in the stages or in a branch); it happens before anything is written.
   nodus::simulation::Simulation sim(std::move(scenario));
-  std::filesystem::create_directories(out);
+  const nodus::scenario::Scenario& main_scenario = sim.scenario();
+  const fs::path& out = request.out;
+  const auto branch_dir = [&](const nodus::scenario::BranchSpec& b) { return out / "branches" / b.name; };
 
-  nodus::output::StepsCsvWriter steps(out);
-  nodus::output::VtkSeriesWriter vtk(out, sim.scenario().output.vtk_every, sim.scenario().output.tube_sides);
-  nodus::output::FinalNodesWriter final_nodes(out);
-  nodus::output::ContactCsvWriter contact_tables(out);
-  nodus::output::SummaryWriter summary_writer(out);
-  nodus::output::ProgressReporter progress(sim.scenario().output.progress_seconds);
-  std::vector<nodus::simulation::StepObserver*> observers{&steps, &vtk, &final_nodes, &contact_tables,
-                                                          &summary_writer};
-  if (!quiet) observers.push_back(&progress);
-  const nodus::simulation::RunSummary summary = sim.run(observers);
+  // With --resume, everything that is read back is read and checked before anything is written.
+  std::optional<nodus::simulation::SimulationState> resumed;
+  std::vector<BranchStart> branch_starts(main_scenario.branches.size());
+  if (request.resume) {
+    if (fs::exists(out / "summary.json")) {
+      const nodus::output::SummaryData done = nodus::output::read_summary(out / "summary.json");
+      spdlog::info("the run in {} is already complete ({}); nothing to resume", out.string(),
+                   done.converged ? "converged" : "stopped: " + done.failure);
+      return done.converged ? 0 : kNotConverged;
+    }
+    const auto newest = nodus::output::newest_checkpoint(out / "checkpoints");
+    if (!newest)
+      throw nodus::scenario::ScenarioError(fmt::format(
+          "{}: --resume: expected a checkpoint (*.nodus-state) in {}, got none: nothing to resume "
+          "(run without --resume to start the run)",
+          out.string(), (out / "checkpoints").string()));
+    resumed = nodus::output::read_checkpoint(newest->path, main_scenario);
+    spdlog::info("resuming from {} ({})", newest->path.string(), describe_position(*newest, main_scenario));
+    for (std::size_t b = 0; b < main_scenario.branches.size(); ++b) {
+      const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
+      const nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
+      BranchStart& start = branch_starts[b];
+      start.finished = fs::exists(branch_dir(branch) / "summary.json");
+      if (start.finished) continue;
+      start.own = nodus::output::newest_checkpoint(branch_dir(branch) / "checkpoints");
+      const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
+      if (fs::exists(from)) nodus::output::read_checkpoint(from, branch_scenario);  // checks it
+    }
+  }
 
+  // From here on, files are written.
+  fs::create_directories(out);
+  if (resumed) {
+    sim.restore(std::move(*resumed), nodus::simulation::StartKind::resumed);
+  } else {
+    // Branch results of an earlier run must not pass for finished or resumable ones.
+    for (const nodus::scenario::BranchSpec& branch : main_scenario.branches) {
+      fs::remove(branch_dir(branch) / "summary.json");
+      nodus::output::remove_checkpoints(branch_dir(branch) / "checkpoints");
+    }
+  }
+  int steps_left = request.stop_after_steps;
+  const auto stopped = [&](const nodus::simulation::Simulation& s) {
+    spdlog::error(
+        "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; "
+        "continue it with --resume",
+        request.stop_after_steps, s.time());
+    return kNotConverged;
+  };
+
+  RunOutputs outputs(out, main_scenario, request.quiet, main_scenario.branches.empty());
+  const nodus::simulation::RunSummary summary = sim.run(outputs.observers(), {steps_left});
+  if (summary.interrupted) return stopped(sim);
+  if (steps_left > 0) steps_left -= summary.new_steps;
   spdlog::info("{} steps, {} Newton iterations, {:.2f} s; results in {}", summary.steps,
                summary.newton_iterations, summary.wall_seconds, out.string());
-  if (!summary.converged) {
+  bool all_converged = summary.converged;
+  if (!summary.converged)
     spdlog::error("run stopped: {}; the last converged state (load time {:.6g} s) is kept in {}",
                   summary.failure, sim.time(), out.string());
-    return kNotConverged;
+
+  if (main_scenario.branches.empty()) return all_converged ? 0 : kNotConverged;
+
+  std::vector<nodus::output::BranchOutcome> outcomes;
+  for (std::size_t b = 0; b < main_scenario.branches.size(); ++b) {
+    const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
+    nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
+    const fs::path dir = branch_dir(branch);
+    nodus::output::BranchOutcome outcome;
+    outcome.name = branch.name;
+    outcome.from = main_scenario.stages.at(static_cast<std::size_t>(branch.from)).name;
+    outcome.friction = branch_scenario.contact.friction;
+    outcome.folder = "branches/" + branch.name;
+    const BranchStart& start = branch_starts[b];
+    if (start.finished) {
+      const nodus::output::SummaryData done = nodus::output::read_summary(dir / "summary.json");
+      outcome.converged = done.converged;
+      outcome.failure = done.failure;
+      outcome.steps = done.steps;
+      outcome.final_time = done.final_time;
+      outcomes.push_back(outcome);
+      all_converged = all_converged && outcome.converged;
+      continue;
+    }
+    const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
+    if (!fs::exists(from)) {
+      outcome.failure =
+          fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
+      spdlog::error("branch '{}' {}", branch.name, outcome.failure);
+      outcomes.push_back(outcome);
+      all_converged = false;
+      continue;
+    }
+    nodus::simulation::Simulation branch_sim(std::move(branch_scenario));
+    nodus::simulation::SimulationState state = nodus::output::read_checkpoint(from, branch_sim.scenario());
+    if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
+      throw std::runtime_error(
+          fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
+    spdlog::info("branch '{}': {} {}", branch.name, start.own ? "resuming from" : "starting from",
+                 from.string());
+    branch_sim.restore(std::move(state), start.own ? nodus::simulation::StartKind::resumed
+                                                   : nodus::simulation::StartKind::branched);
+    RunOutputs branch_outputs(dir, branch_sim.scenario(), request.quiet, true);
+    const nodus::simulation::RunSummary branch_summary =
+        branch_sim.run(branch_outputs.observers(), {steps_left});
+    if (branch_summary.interrupted) return stopped(branch_sim);
+    if (steps_left > 0) steps_left -= branch_summary.new_steps;
+    outcome.converged = branch_summary.converged;
+    outcome.failure = branch_summary.failure;
+    outcome.steps = branch_summary.steps;
+    outcome.final_time = branch_sim.time();
+    spdlog::info("branch '{}': {} steps; results in {}", branch.name, branch_summary.steps, dir.string());
+    if (!branch_summary.converged)
+      spdlog::error("branch '{}' stopped: {}; its last converged state is kept in {}", branch.name,
+                    branch_summary.failure, dir.string());
+    all_converged = all_converged && outcome.converged;
+    outcomes.push_back(outcome);
   }
-  return 0;
+  // The main run's summary, written last: it lists the branches and marks the whole run as finished.
+  nodus::output::SummaryData data = *outputs.summary().data();
+  data.branches = std::move(outcomes);
+  nodus::output::write_summary(out / "summary.json", data);
+  return all_converged ? 0 : kNotConverged;
 }
 
 }  // namespace
@@ -67,16 +246,22 @@ int main(int argc, char** argv) {
   nodus::output::use_stderr_logger();
   CLI::App app{"nodus: contact-friction mechanics of elastic beam assemblies (units: mm, N, MPa, s)"};
   app.require_subcommand(1);
-  std::string scenario_path;
-  std::filesystem::path out;
-  bool quiet = false;
+  RunRequest request;
+  std::string& scenario_path = request.scenario_path;
   bool verbose = false;
 
   CLI::App* run_cmd = app.add_subcommand("run", "run a scenario and write its results");
   run_cmd->add_option("scenario", scenario_path, "scenario file (YAML)")->required();
-  run_cmd->add_option("--out,-o", out, "output directory (created if missing)")->required();
-  run_cmd->add_flag("--quiet,-q", quiet, "no settings echo and no progress lines");
+  run_cmd->add_option("--out,-o", request.out, "output directory (created if missing)")->required();
+  run_cmd->add_flag("--quiet,-q", request.quiet, "no settings echo and no progress lines");
   run_cmd->add_flag("--verbose,-v", verbose, "log every Newton iteration");
+  run_cmd->add_flag("--resume", request.resume,
+                    "continue the interrupted run in the output directory from its newest checkpoint");
+  run_cmd
+      ->add_option("--stop-after-steps", request.stop_after_steps,
+                   "for testing: stop the run as if it were killed after N converged steps (after the "
+                   "checkpoint then due), exit status 3")
+      ->check(CLI::PositiveNumber);
 
   CLI::App* check_cmd = app.add_subcommand("check", "validate a scenario and print the resolved settings");
   check_cmd->add_option("scenario", scenario_path, "scenario file (YAML)")->required();
@@ -102,7 +287,7 @@ int main(int argc, char** argv) {
       std::fputs(nodus::scenario::describe(scenario).c_str(), stdout);
       return 0;
     }
-    return run(scenario_path, out, quiet);
+    return run(request);
   } catch (const nodus::scenario::ScenarioError& e) {
     std::fprintf(stderr, "nodus: %s\n", e.what());
     return kBadInput;

@@ -110,6 +110,7 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   EXPECT_EQ(number(scenario_key("output.vtk_every").default_value), output.vtk_every);
   EXPECT_EQ(number(scenario_key("output.tube_sides").default_value), output.tube_sides);
   EXPECT_EQ(number(scenario_key("output.progress_seconds").default_value), output.progress_seconds);
+  EXPECT_EQ(number(scenario_key("output.checkpoint_every").default_value), output.checkpoint_every);
 
   const BeamSpec beam;
   EXPECT_EQ(number(scenario_key("beams[].bending_factor").default_value), beam.bending_factor);

@@ -56,6 +56,42 @@ int Conditions::add_load(std::string name, int node, const Vec3& force, const Ve
   return size() - 1;
 }
 
+ConditionState Conditions::state(int c) const {
+  const Item& item = at(c);
+  ConditionState out;
+  out.active = item.active;
+  out.anchors = item.anchors;
+  out.pivot = item.pivot;
+  out.translation = item.translation;
+  out.rotation = item.rotation;
+  out.force = item.force;
+  out.director_force = item.director_force;
+  out.moment = item.moment;
+  out.axis = item.axis;
+  out.director = item.director;
+  if (item.angle) out.angle = item.angle->state();
+  return out;
+}
+
+void Conditions::restore(int c, const ConditionState& state) {
+  Item& item = at(c);
+  if (!state.anchors.empty() && state.anchors.size() != item.nodes.size())
+    throw std::invalid_argument(fmt::format("condition '{}': {} anchors restored for {} nodes", item.name,
+                                            state.anchors.size(), item.nodes.size()));
+  item.active = state.active;
+  item.anchors = state.anchors;
+  item.pivot = state.pivot;
+  item.translation = state.translation;
+  item.rotation = state.rotation;
+  item.force = state.force;
+  item.director_force = state.director_force;
+  item.moment = state.moment;
+  item.axis = state.axis;
+  item.director = state.director;
+  item.angle.reset();
+  if (state.angle) item.angle.emplace(*state.angle);
+}
+
 void Conditions::anchor_moment(Item& item, const NodeVector& state) {
   // The moment acts through the director most nearly normal to its axis.
   const Vec3 g1 = state.segment<3>(3), g2 = state.segment<3>(6);

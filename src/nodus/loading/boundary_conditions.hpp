@@ -33,6 +33,24 @@ struct SectionForce {
 
 enum class ConditionKind { motion, load };
 
+/// What a condition carries through a run besides what it was built with (name, kind, nodes, dofs, given
+/// pivot): whether it acts, its anchors and pivot taken at activation, its paths (motion keyframes, load
+/// values, the ramp of a released support) and the fixed axis and turn count of its moment. Saving it and
+/// restoring it into a Conditions built the same way continues the run exactly.
+struct ConditionState {
+  bool active = false;
+  std::vector<NodeVector> anchors;  ///< per node, at activation
+  Vec3 pivot = Vec3::Zero();        ///< at activation [mm]
+  Path<Vec3> translation{Vec3::Zero()};
+  Path<Vec3> rotation{Vec3::Zero()};  ///< rotation vector [rad]
+  Path<Vec3> force{Vec3::Zero()};
+  Path<NodeVector> director_force{NodeVector::Zero()};
+  Path<double> moment{0.0};
+  Vec3 axis = Vec3::UnitZ();
+  int director = 0;
+  std::optional<AxisAngle::State> angle;
+};
+
 class Conditions {
  public:
   /// A prescribed motion of the dofs in `mask` of global node `node`; a clamp is a motion with no keyframes.
@@ -51,6 +69,13 @@ class Conditions {
   /// The node of a motion or load; the first node of a rigid condition.
   int node(int c) const { return at(c).nodes.front(); }
   bool active(int c) const { return at(c).active; }
+  /// The fixed axis of the moment of a load (unit); for a released motion, that of its ramped-down moment.
+  const Vec3& moment_axis(int c) const { return at(c).axis; }
+
+  /// The state of condition c (see ConditionState).
+  ConditionState state(int c) const;
+  /// Restores the state of condition c, as state(c) returned it in a Conditions built the same way.
+  void restore(int c, const ConditionState& state);
 
   /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
   void activate(int c, double time, const Eigen::VectorXd& x);

@@ -16,8 +16,21 @@ using Vec3 = Eigen::Vector3d;
 
 class AxisAngle {
  public:
+  /// Everything an AxisAngle holds: the axis, the basis b1, b2 of the plane normal to it in which the angle
+  /// is measured (b1 along the director at activation), and the committed angle [rad] (counting turns).
+  struct State {
+    Vec3 axis = Vec3::UnitZ();
+    Vec3 b1 = Vec3::UnitX();
+    Vec3 b2 = Vec3::UnitY();
+    double committed = 0.0;
+  };
+
   /// `axis`: unit vector; `v0`: the director at activation, not parallel to the axis.
   AxisAngle(const Vec3& axis, const Vec3& v0);
+  /// The AxisAngle whose state() is `state` (a saved state).
+  explicit AxisAngle(const State& state)
+      : axis_(state.axis), b1_(state.b1), b2_(state.b2), committed_(state.committed) {}
+  State state() const { return {axis_, b1_, b2_, committed_}; }
 
   /// Angle of v about the axis [rad], continuous from the committed angle (valid while v turns by less than
   /// pi between two commits).

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cassert>
+#include <utility>
 #include <vector>
 
 namespace nodus::loading {
@@ -12,6 +13,12 @@ template <class Value>
 class Path {
  public:
   explicit Path(Value initial) : times_{0.0}, values_{initial} {}
+  /// A path with these keyframes (as times() and values() return them; a saved state): at least one, times
+  /// not decreasing.
+  Path(std::vector<double> times, std::vector<Value> values)
+      : times_(std::move(times)), values_(std::move(values)) {
+    assert(!times_.empty() && times_.size() == values_.size());
+  }
 
   /// Appends a keyframe; times must not decrease.
   void add(double time, const Value& value) {
@@ -33,6 +40,9 @@ class Path {
     return values_[i - 1] + s * (values_[i] - values_[i - 1]);
   }
   double last_time() const { return times_.back(); }
+  /// The keyframes, in order.
+  const std::vector<double>& times() const { return times_; }
+  const std::vector<Value>& values() const { return values_; }
 
  private:
   std::vector<double> times_;

@@ -1,6 +1,7 @@
 #include "nodus/output/contact_csv_writer.hpp"
 
 #include <cassert>
+#include <charconv>
 #include <regex>
 #include <stdexcept>
 #include <system_error>
@@ -62,13 +63,23 @@ std::string ContactCsvSeries::file_name(int step) {
 }
 
 void ContactCsvSeries::begin() {
+  resume(-1);
+}
+
+void ContactCsvSeries::resume(int last_step) {
   std::error_code error;
   if (!std::filesystem::is_directory(folder_, error)) return;
-  const std::regex series_file(R"(contact_[0-9]{6,}\.csv)");
+  const std::regex series_file(R"(contact_([0-9]{6,})\.csv)");
   std::vector<std::filesystem::path> stale;
-  for (const auto& entry : std::filesystem::directory_iterator(folder_, error))
-    if (entry.is_regular_file() && std::regex_match(entry.path().filename().string(), series_file))
-      stale.push_back(entry.path());
+  for (const auto& entry : std::filesystem::directory_iterator(folder_, error)) {
+    std::smatch match;
+    const std::string name = entry.path().filename().string();
+    if (!entry.is_regular_file() || !std::regex_match(name, match, series_file)) continue;
+    long long step = 0;
+    const std::string digits = match[1].str();
+    std::from_chars(digits.data(), digits.data() + digits.size(), step);
+    if (step > last_step) stale.push_back(entry.path());
+  }
   if (error) throw std::runtime_error("cannot list folder '" + folder_.string() + "': " + error.message());
   for (const auto& path : stale) remove_file(path);
 }

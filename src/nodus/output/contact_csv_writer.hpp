@@ -50,6 +50,8 @@ class ContactCsvSeries {
 
   /// Removes contact_NNNNNN.csv files left in DIR/contact by an earlier run (other files are kept).
   void begin();
+  /// Takes up the series of an interrupted run at its step `last_step`: removes the files of later steps.
+  void resume(int last_step);
   /// Writes DIR/contact/contact_NNNNNN.csv (NNNNNN = `step`, six digits at least; the folder is created if
   /// missing) of `geometry`, with `states` if given (temporary file + rename). Writing a step again replaces
   /// its file.

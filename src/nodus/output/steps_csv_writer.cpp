@@ -1,9 +1,14 @@
 #include "nodus/output/steps_csv_writer.hpp"
 
+#include <charconv>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
+#include <system_error>
 
 #include <fmt/format.h>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/csv.hpp"
 
 namespace nodus::output {
@@ -39,6 +44,34 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
   return fmt::to_string(row);
 }
 
+std::string steps_csv_up_to(std::string_view text, int last_step) {
+  std::string out;
+  bool header = true;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    // The end of the record: the first line end outside double quotes.
+    bool quoted = false;
+    std::size_t end = begin;
+    while (end < text.size() && (quoted || text[end] != '\n')) {
+      if (text[end] == '"') quoted = !quoted;
+      ++end;
+    }
+    if (end == text.size()) break;  // a line cut short by a kill
+    const std::string_view record = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (!header) {
+      int step = 0;
+      const auto [next, error] = std::from_chars(record.data(), record.data() + record.size(), step);
+      if (error != std::errc{} || next == record.data() + record.size() || *next != ',' || step > last_step)
+        break;
+    }
+    header = false;
+    out.append(record);
+    out += '\n';
+  }
+  return out;
+}
+
 StepsCsvWriter::StepsCsvWriter(std::filesystem::path dir) : dir_(std::move(dir)), path_(dir_ / "steps.csv") {}
 
 StepsCsvWriter::~StepsCsvWriter() {
@@ -57,11 +90,27 @@ void StepsCsvWriter::on_start(const simulation::Simulation& sim) {
   std::filesystem::create_directories(dir_, error);
   if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
   if (file_) std::fclose(file_);
-  file_ = std::fopen(path_.c_str(), "w");
-  if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for writing");
+  file_ = nullptr;
   std::vector<std::string> names;
   for (int c = 0; c < sim.conditions().size(); ++c) names.push_back(sim.conditions().name(c));
-  write_line(steps_csv_header(names));
+  const std::string header = steps_csv_header(names);
+  if (sim.start_kind() == simulation::StartKind::resumed) {
+    std::string kept = header + "\n";
+    if (std::ifstream in(path_, std::ios::binary); in) {
+      std::ostringstream text;
+      text << in.rdbuf();
+      kept = steps_csv_up_to(text.str(), sim.steps());
+      if (!kept.starts_with(header + "\n"))
+        throw std::runtime_error("'" + path_.string() + "' does not start with the header of this scenario");
+    }
+    write_file_atomically(path_, kept);
+    file_ = std::fopen(path_.c_str(), "a");
+    if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for appending");
+    return;
+  }
+  file_ = std::fopen(path_.c_str(), "w");
+  if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for writing");
+  write_line(header);
 }
 
 void StepsCsvWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {

@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "nodus/simulation/simulation.hpp"
@@ -26,8 +27,14 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names);
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions);
 
+/// `text` (a steps.csv) cut after the data line of step `last_step`: the header and the lines of the steps up
+/// to `last_step`, each with its line end (a quoted field may hold line breaks).
+std::string steps_csv_up_to(std::string_view text, int last_step);
+
 /// Writes DIR/steps.csv: the header at the start of the run, a row per converged step, each row flushed at
-/// once so that an interrupted run keeps its rows. Throws std::runtime_error naming the file on I/O errors.
+/// once so that an interrupted run keeps its rows. When the run resumes an interrupted one
+/// (simulation::StartKind::resumed), it keeps the header and the rows up to the resumed state's step and
+/// drops the later ones, then appends. Throws std::runtime_error naming the file on I/O errors.
 class StepsCsvWriter : public simulation::StepObserver {
  public:
   /// `dir`: output folder, created if missing.

@@ -1,5 +1,6 @@
 #include "nodus/output/summary_writer.hpp"
 
+#include <fstream>
 #include <stdexcept>
 #include <system_error>
 
@@ -25,6 +26,7 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.failure = summary.failure;
   data.final_time = sim.time();
   data.scenario = sim.scenario().path;
+  if (sim.scenario().origin) data.branch = sim.scenario().origin->name;
   return data;
 }
 
@@ -44,6 +46,22 @@ std::string summary_json(const SummaryData& data) {
   j["nodes"] = data.nodes;
   j["elements"] = data.elements;
   j["dofs"] = data.dofs;
+  if (!data.branch.empty()) j["branch"] = data.branch;
+  if (!data.branches.empty()) {
+    j["branches"] = nlohmann::ordered_json::array();
+    for (const BranchOutcome& b : data.branches) {
+      nlohmann::ordered_json o;
+      o["name"] = b.name;
+      o["from"] = b.from;
+      o["friction"] = b.friction;
+      o["folder"] = b.folder;
+      o["converged"] = b.converged;
+      o["failure"] = b.failure;
+      o["steps"] = b.steps;
+      o["final_time"] = b.final_time;
+      j["branches"].push_back(std::move(o));
+    }
+  }
   // Replace rather than throw on invalid UTF-8 in a path or a message.
   return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";
 }
@@ -52,14 +70,50 @@ void write_summary(const std::filesystem::path& path, const SummaryData& data) {
   write_file_atomically(path, summary_json(data));
 }
 
-SummaryWriter::SummaryWriter(std::filesystem::path dir)
-    : dir_(std::move(dir)), path_(dir_ / "summary.json") {}
+SummaryData read_summary(const std::filesystem::path& path) {
+  std::ifstream in(path);
+  if (!in) throw std::runtime_error("cannot open '" + path.string() + "'");
+  try {
+    const nlohmann::json j = nlohmann::json::parse(in);
+    SummaryData data;
+    data.scenario = j.value("scenario", "");
+    data.converged = j.at("converged").get<bool>();
+    data.failure = j.value("failure", "");
+    data.steps = j.at("steps").get<int>();
+    data.newton_iterations = j.value("newton_iterations", 0);
+    data.final_time = j.value("final_time", 0.0);
+    data.wall_seconds = j.value("wall_seconds", 0.0);
+    data.detection_seconds = j.value("detection_seconds", 0.0);
+    data.assembly_seconds = j.value("assembly_seconds", 0.0);
+    data.linear_solve_seconds = j.value("linear_solve_seconds", 0.0);
+    data.beams = j.value("beams", 0);
+    data.nodes = j.value("nodes", 0);
+    data.elements = j.value("elements", 0);
+    data.dofs = j.value("dofs", 0);
+    data.branch = j.value("branch", "");
+    return data;
+  } catch (const nlohmann::json::exception& e) {
+    throw std::runtime_error("cannot read '" + path.string() + "': " + e.what());
+  }
+}
+
+SummaryWriter::SummaryWriter(std::filesystem::path dir, bool write_at_finish)
+    : dir_(std::move(dir)), path_(dir_ / "summary.json"), write_at_finish_(write_at_finish) {}
+
+void SummaryWriter::on_start(const simulation::Simulation& /*sim*/) {
+  data_.reset();
+  std::error_code error;
+  std::filesystem::remove(path_, error);
+  if (error) throw std::runtime_error("cannot remove old file '" + path_.string() + "': " + error.message());
+}
 
 void SummaryWriter::on_finish(const simulation::Simulation& sim, const simulation::RunSummary& summary) {
+  data_ = summary_data(sim, summary);
+  if (!write_at_finish_) return;
   std::error_code error;
   std::filesystem::create_directories(dir_, error);
   if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
-  write_summary(path_, summary_data(sim, summary));
+  write_summary(path_, *data_);
 }
 
 }  // namespace nodus::output

@@ -1,6 +1,9 @@
 #include "nodus/output/vtk_series.hpp"
 
 #include <algorithm>
+#include <charconv>
+#include <fstream>
+#include <optional>
 #include <regex>
 #include <stdexcept>
 #include <system_error>
@@ -64,6 +67,74 @@ void VtkSeries::begin(bool contact) {
   contact_.clear();
   write_pvd(pvd_path(), beams_.entries);
   if (contact) write_pvd(contact_pvd_path(), contact_.entries);
+  begun_ = true;
+}
+
+namespace {
+
+/// The number NNNNNN of a file name "PREFIX_NNNNNN.vtp" (or a path ending with it); none if it is not one.
+std::optional<int> series_step(const std::string& name, const std::regex& pattern) {
+  std::smatch match;
+  if (!std::regex_match(name, match, pattern)) return std::nullopt;
+  int step = 0;
+  const std::string digits = match[2].str();
+  const auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), step);
+  if (error != std::errc{} || end != digits.data() + digits.size()) return std::nullopt;
+  return step;
+}
+
+/// The (time, file) entries of a .pvd collection written by write_pvd; none if the file does not exist.
+std::vector<PvdEntry> read_pvd(const std::filesystem::path& path) {
+  std::vector<PvdEntry> entries;
+  std::ifstream in(path);
+  if (!in) return entries;
+  const std::regex data_set(R"re(\s*<DataSet timestep="([^"]*)" group="" part="0" file="([^"]*)"/>\s*)re");
+  std::string line;
+  while (std::getline(in, line)) {
+    std::smatch match;
+    if (!std::regex_match(line, match, data_set)) continue;
+    const std::string time_text = match[1].str();
+    double time = 0.0;
+    const auto [end, error] = std::from_chars(time_text.data(), time_text.data() + time_text.size(), time);
+    if (error != std::errc{} || end != time_text.data() + time_text.size())
+      throw std::runtime_error("'" + path.string() + "': unreadable timestep '" + time_text + "'");
+    entries.push_back({time, match[2].str()});
+  }
+  return entries;
+}
+
+}  // namespace
+
+void VtkSeries::resume(int last_step, bool contact) {
+  const std::filesystem::path vtk = dir_ / "vtk";
+  std::error_code error;
+  std::filesystem::create_directories(vtk, error);
+  if (error) throw std::runtime_error("cannot create folder '" + vtk.string() + "': " + error.message());
+  const std::regex series_file(R"((step|contact)_([0-9]{6,})\.vtp)");
+  std::vector<std::filesystem::path> stale;
+  for (const auto& entry : std::filesystem::directory_iterator(vtk, error)) {
+    if (!entry.is_regular_file()) continue;
+    const auto step = series_step(entry.path().filename().string(), series_file);
+    if (step && *step > last_step) stale.push_back(entry.path());
+  }
+  if (error) throw std::runtime_error("cannot list folder '" + vtk.string() + "': " + error.message());
+  if (!contact && std::filesystem::exists(contact_pvd_path())) stale.push_back(contact_pvd_path());
+  for (const auto& path : stale) {
+    std::filesystem::remove(path, error);
+    if (error) throw std::runtime_error("cannot remove old file '" + path.string() + "': " + error.message());
+  }
+  const std::regex entry_file(R"(vtk/(step|contact)_([0-9]{6,})\.vtp)");
+  const auto take_up = [&](Collection& collection, const std::filesystem::path& pvd) {
+    collection.clear();
+    for (const PvdEntry& e : read_pvd(pvd)) {
+      const auto step = series_step(e.file, entry_file);
+      if (step && *step <= last_step) collection.add(*step, e.time, e.file);
+    }
+    write_pvd(pvd, collection.entries);
+  };
+  take_up(beams_, pvd_path());
+  contact_.clear();
+  if (contact) take_up(contact_, contact_pvd_path());
   begun_ = true;
 }
 

@@ -26,6 +26,10 @@ class VtkSeries {
   /// empty result.pvd; with `contact`, also an empty contact.pvd, without, removes a contact.pvd left by an
   /// earlier run.
   void begin(bool contact = false);
+  /// Takes up the series of an interrupted run at its step `last_step`: reads the entries of result.pvd (and
+  /// with `contact` of contact.pvd) up to that step, removes the step_*.vtp and contact_*.vtp files of later
+  /// steps and rewrites the collections without them; without `contact`, removes a contact.pvd.
+  void resume(int last_step, bool contact = false);
   /// Writes DIR/vtk/step_NNNNNN.vtp (NNNNNN = `step`, six digits at least) of state `x` at load time `time`
   /// [s], then rewrites result.pvd. With `contact` (not null), then also writes DIR/vtk/contact_NNNNNN.vtp of
   /// that geometry, with the contact forces of `states` if given (one per element of `contact`; see

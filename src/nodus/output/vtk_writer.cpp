@@ -21,11 +21,16 @@ void VtkSeriesWriter::write(const simulation::Simulation& sim, int step, double 
 }
 
 void VtkSeriesWriter::on_start(const simulation::Simulation& sim) {
+  contact_csv_ = sim.scenario().output.contact_csv;
+  last_step_ = sim.steps();
+  if (sim.start_kind() == simulation::StartKind::resumed) {
+    series_.resume(last_step_, sim.contact() != nullptr);
+    contact_tables_.resume(last_step_);
+    return;
+  }
   series_.begin(sim.contact() != nullptr);
   contact_tables_.begin();
-  contact_csv_ = sim.scenario().output.contact_csv;
-  last_step_ = 0;
-  write(sim, 0, sim.time());
+  write(sim, last_step_, sim.time());
 }
 
 void VtkSeriesWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {

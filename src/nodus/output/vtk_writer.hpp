@@ -1,10 +1,11 @@
 #pragma once
-/// VTK output of a run: a picture of the initial state, of every `every`-th converged step and of the final
-/// converged state, collected in DIR/result.pvd (see vtk_format.hpp and vtk_series.hpp); when the run has
-/// contact (Simulation::contact() not null), a picture of the contact geometry for the same steps, collected
-/// in DIR/contact.pvd (see contact_vtk.hpp), carrying the contact forces when the run has them; and with
-/// output.contact_csv, the contact element table of the same steps as DIR/contact/contact_NNNNNN.csv (see
-/// contact_csv_writer.hpp).
+/// VTK output of a run: a picture of the initial state (for a branch, of the state it starts from, under the
+/// step number it has there), of every `every`-th converged step and of the final converged state, collected
+/// in DIR/result.pvd (see vtk_format.hpp and vtk_series.hpp); when the run has contact (Simulation::contact()
+/// not null), a picture of the contact geometry for the same steps, collected in DIR/contact.pvd (see
+/// contact_vtk.hpp), carrying the contact forces when the run has them; and with output.contact_csv, the
+/// contact element table of the same steps as DIR/contact/contact_NNNNNN.csv (see contact_csv_writer.hpp). A
+/// run that resumes an interrupted one takes up its series at the resumed step instead of starting anew.
 
 #include <filesystem>
 

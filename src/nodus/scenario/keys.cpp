@@ -130,6 +130,9 @@ constexpr std::array kKeys{
   KeyDoc{"output.contact_csv", "bool", "", "false", "",
          "with contact: also write contact/contact_NNNNNN.csv (every contact element) at every VTK "
          "output step"},
+  KeyDoc{"output.checkpoint_every", "integer", "", "0", ">= 0",
+         "also save the run's complete state every N converged steps, as checkpoints/latest.nodus-state "
+         "(the state at the end of every stage is always saved; docs/output.md); 0: at stage ends only"},
 
   KeyDoc{"contact", "map", "", "-", "",
          "contact detection and contact forces between the beams (docs/contact.md); absent: no contact, "
@@ -179,6 +182,22 @@ constexpr std::array kKeys{
   KeyDoc{"contact.normal_tolerance", "number", "rad", "0.001", "> 0",
          "loop 3 stops when no normal turns by more than this and every zone's penetration is within 20 % "
          "of max_penetration (or none)"},
+
+  KeyDoc{"branches", "list", "", "[]", "-",
+         "runs that each continue from the state at the end of one stage of stages, after all of stages; "
+         "results in DIR/branches/NAME"},
+  KeyDoc{"branches[].name", "string", "", "required", "unique among branches, of letters, digits, _ . -",
+         "name of the branch and of its output folder DIR/branches/NAME"},
+  KeyDoc{"branches[].from", "string", "", "required", "naming a stage of stages",
+         "the branch starts from the state at the end of this stage (load time and step numbers go on "
+         "from there)"},
+  KeyDoc{"branches[].contact", "map", "", "-", "with friction only; needs a contact section",
+         "overrides of the contact settings for the branch's stages"},
+  KeyDoc{"branches[].contact.friction", "number", "", "unchanged", ">= 0",
+         "Coulomb friction coefficient mu of the branch's stages"},
+  KeyDoc{"branches[].stages", "list", "", "required", "non-empty, each item as in stages[]",
+         "the branch's loading program, run in order after the from stage; stage names unique within the "
+         "branch"},
 };
 // clang-format on
 

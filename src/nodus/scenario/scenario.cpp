@@ -504,6 +504,13 @@ class MomentAxes {
     }
   }
 
+  /// The direction of the first nonzero moment of `condition` (unit); none if it had none.
+  std::optional<Vec3> axis(int condition) const {
+    const auto found = first_.find(condition);
+    if (found == first_.end()) return std::nullopt;
+    return found->second.first.normalized();
+  }
+
  private:
   std::map<int, std::pair<Vec3, std::string>> first_;
 };
@@ -707,20 +714,30 @@ std::vector<int> read_contact_beams(const Reader& reader, const std::optional<Fi
   return out;
 }
 
-std::vector<StageSpec> read_stages(const Reader& reader, const MapView& top, const NameTable& condition_names,
-                                   const std::vector<ConditionSpec>& conditions, const NameTable& beam_names,
-                                   const ContactSettings& contact, MomentAxes& moment_axes) {
-  // The value each load has at the start of the current stage.
-  std::map<int, std::pair<Vec3, Vec3>> load_values;
+/// The value (force, moment) each load has, by condition.
+using LoadValues = std::map<int, std::pair<Vec3, Vec3>>;
+
+/// The values the loads start with: their initial values.
+LoadValues initial_load_values(const std::vector<ConditionSpec>& conditions) {
+  LoadValues load_values;
   for (std::size_t i = 0; i < conditions.size(); ++i) {
     if (conditions[i].type == ConditionType::load) {
       load_values[static_cast<int>(i)] = {conditions[i].force, conditions[i].moment};
     }
   }
+  return load_values;
+}
 
+/// A list of stages (`stages`, or a branch's `stages`: `list` then has the pattern "stages" and its own
+/// path). `load_values`: the value of each load at the start of the first stage, updated stage by stage;
+/// `after_each`, if given, receives them after each stage. `stage_names` receives the names.
+std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, const NameTable& condition_names,
+                                   const std::vector<ConditionSpec>& conditions, const NameTable& beam_names,
+                                   const ContactSettings& contact, MomentAxes& moment_axes,
+                                   LoadValues& load_values, NameTable& stage_names,
+                                   std::vector<LoadValues>* after_each = nullptr) {
   std::vector<StageSpec> stages;
-  NameTable stage_names;
-  for (const Field& item : reader.list(top.require("stages"), true)) {
+  for (const Field& item : reader.list(list, true)) {
     const MapView map(reader, item);
     StageSpec stage;
     const Field name = map.require("name");
@@ -781,8 +798,66 @@ std::vector<StageSpec> read_stages(const Reader& reader, const MapView& top, con
       }
     }
     stages.push_back(std::move(stage));
+    if (after_each) after_each->push_back(load_values);
   }
   return stages;
+}
+
+/// Whether a branch name can be a folder name: letters, digits, '_', '.', '-', not starting with '.'.
+bool is_folder_name(const std::string& name) {
+  return !name.empty() && name.front() != '.' && std::all_of(name.begin(), name.end(), [](unsigned char c) {
+    return std::isalnum(c) || c == '_' || c == '.' || c == '-';
+  });
+}
+
+std::vector<BranchSpec> read_branches(const Reader& reader, const MapView& top, const NameTable& stage_names,
+                                      const std::vector<LoadValues>& load_values_after,
+                                      const NameTable& condition_names,
+                                      const std::vector<ConditionSpec>& conditions,
+                                      const NameTable& beam_names, const ContactSettings& contact,
+                                      bool has_contact_section, MomentAxes& moment_axes) {
+  std::vector<BranchSpec> branches;
+  const auto list = top.get("branches");
+  if (!list) return branches;
+  NameTable branch_names;
+  for (const Field& item : reader.list(*list, false)) {
+    const MapView map(reader, item);
+    BranchSpec branch;
+    branch.line = map.line();
+    const Field name = map.require("name");
+    branch.name = reader.name(name);
+    if (!is_folder_name(branch.name)) {
+      reader.fail(name,
+                  "a name of letters, digits, _ . - not starting with . (it names the output folder "
+                  "DIR/branches/NAME)");
+    }
+    branch_names.add(reader, name, branch.name, "branches");
+
+    const Field from = map.require("from");
+    const auto stage = stage_names.find(reader.name(from));
+    if (!stage)
+      reader.fail(from, fmt::format("the name of a stage of stages ({})", name_list(stage_names.names)));
+    branch.from = *stage;
+
+    if (const auto overrides = map.get("contact")) {
+      if (!has_contact_section) {
+        reader.fail(*overrides, "no contact override in a scenario without a contact section");
+      }
+      const MapView values(reader, *overrides);
+      if (const auto value = values.get("friction")) {
+        branch.friction = reader.number(*value, [](double v) { return v >= 0.0; });
+      }
+    }
+
+    const Field stages = map.require("stages");
+    LoadValues load_values = load_values_after.at(static_cast<std::size_t>(branch.from));
+    NameTable own_stage_names;
+    branch.stages =
+        read_stages(reader, Field{stages.node, stages.path, "stages", stages.line}, condition_names,
+                    conditions, beam_names, contact, moment_axes, load_values, own_stage_names);
+    branches.push_back(std::move(branch));
+  }
+  return branches;
 }
 
 SolverSettings read_solver(const Reader& reader, const MapView& top) {
@@ -828,6 +903,8 @@ OutputSettings read_output(const Reader& reader, const MapView& top) {
     output.progress_seconds = reader.number(*value, [](double v) { return v >= 0.0; });
   }
   if (const auto value = map.get("contact_csv")) output.contact_csv = reader.boolean(*value);
+  if (const auto value = map.get("checkpoint_every"))
+    output.checkpoint_every = reader.integer(*value, [](int v) { return v >= 0; });
   return output;
 }
 
@@ -915,10 +992,22 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_conditions(reader, top, beam_names, scenario.beams, condition_names, moment_axes);
 
   scenario.contact = read_contact(reader, top, beam_names);
-  scenario.stages = read_stages(reader, top, condition_names, scenario.conditions, beam_names,
-                                scenario.contact, moment_axes);
+  LoadValues load_values = initial_load_values(scenario.conditions);
+  std::vector<LoadValues> load_values_after;
+  NameTable stage_names;
+  scenario.stages =
+      read_stages(reader, top.require("stages"), condition_names, scenario.conditions, beam_names,
+                  scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
   scenario.output = read_output(reader, top);
+  scenario.branches =
+      read_branches(reader, top, stage_names, load_values_after, condition_names, scenario.conditions,
+                    beam_names, scenario.contact, top.get("contact").has_value(), moment_axes);
+  for (std::size_t c = 0; c < scenario.conditions.size(); ++c) {
+    if (scenario.conditions[c].type == ConditionType::load) {
+      scenario.conditions[c].moment_axis = moment_axes.axis(static_cast<int>(c));
+    }
+  }
   return scenario;
 }
 
@@ -976,6 +1065,45 @@ std::string describe_names(const Scenario& scenario, const std::vector<int>& con
     out += (i > 0 ? ", " : "") + yaml_name(scenario.conditions[conditions[i]].name);
   }
   return out + "]";
+}
+
+/// The items of a list of stages, each line starting with `indent`.
+void describe_stages(std::string& out, const Scenario& scenario, const std::vector<StageSpec>& stages,
+                     std::string_view indent) {
+  const auto line = [&out, indent](std::string_view text) {
+    out += indent;
+    out += text;
+    out += '\n';
+  };
+  for (const StageSpec& stage : stages) {
+    line(fmt::format("  - name: {}", yaml_name(stage.name)));
+    line(fmt::format("    steps: {}", stage.steps));
+    line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
+    line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
+    line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
+    const auto beam_list = [&](const std::vector<int>& beams) {
+      std::vector<std::string> names;
+      for (int b : beams) names.push_back(yaml_name(scenario.beams.at(static_cast<std::size_t>(b)).name));
+      return fmt::format("[{}]", fmt::join(names, ", "));
+    };
+    if (!stage.contact_off.empty()) line(fmt::format("    contact_off: {}", beam_list(stage.contact_off)));
+    if (!stage.contact_on.empty()) line(fmt::format("    contact_on: {}", beam_list(stage.contact_on)));
+    line(stage.motions.empty() ? "    motions: {}" : "    motions:");
+    for (const MotionTarget& motion : stage.motions) {
+      line(fmt::format("      {}:", yaml_name(scenario.conditions.at(motion.condition).name)));
+      line("        keyframes:  # translation [mm], rotation vector [deg], cumulative since activation");
+      for (const Keyframe& frame : motion.keyframes) {
+        line(fmt::format("          - {{at: {}, translation: {}, rotation: {}}}", format_number(frame.at),
+                         format_vec(frame.translation), format_vec(frame.rotation)));
+      }
+    }
+    line(stage.loads.empty() ? "    loads: {}" : "    loads:  # at stage end: force [N], moment [N mm]");
+    for (const LoadTarget& load : stage.loads) {
+      line(fmt::format("      {}: {{force: {}, moment: {}}}",
+                       yaml_name(scenario.conditions.at(load.condition).name), format_vec(load.force),
+                       format_vec(load.moment)));
+    }
+  }
 }
 
 }  // namespace
@@ -1067,35 +1195,7 @@ std::string describe(const Scenario& scenario) {
   }
 
   line("stages:");
-  for (const StageSpec& stage : scenario.stages) {
-    line(fmt::format("  - name: {}", yaml_name(stage.name)));
-    line(fmt::format("    steps: {}", stage.steps));
-    line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
-    line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
-    line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
-    const auto beam_list = [&](const std::vector<int>& beams) {
-      std::vector<std::string> names;
-      for (int b : beams) names.push_back(yaml_name(scenario.beams.at(static_cast<std::size_t>(b)).name));
-      return fmt::format("[{}]", fmt::join(names, ", "));
-    };
-    if (!stage.contact_off.empty()) line(fmt::format("    contact_off: {}", beam_list(stage.contact_off)));
-    if (!stage.contact_on.empty()) line(fmt::format("    contact_on: {}", beam_list(stage.contact_on)));
-    line(stage.motions.empty() ? "    motions: {}" : "    motions:");
-    for (const MotionTarget& motion : stage.motions) {
-      line(fmt::format("      {}:", yaml_name(scenario.conditions.at(motion.condition).name)));
-      line("        keyframes:  # translation [mm], rotation vector [deg], cumulative since activation");
-      for (const Keyframe& frame : motion.keyframes) {
-        line(fmt::format("          - {{at: {}, translation: {}, rotation: {}}}", format_number(frame.at),
-                         format_vec(frame.translation), format_vec(frame.rotation)));
-      }
-    }
-    line(stage.loads.empty() ? "    loads: {}" : "    loads:  # at stage end: force [N], moment [N mm]");
-    for (const LoadTarget& load : stage.loads) {
-      line(fmt::format("      {}: {{force: {}, moment: {}}}",
-                       yaml_name(scenario.conditions.at(load.condition).name), format_vec(load.force),
-                       format_vec(load.moment)));
-    }
-  }
+  describe_stages(out, scenario, scenario.stages, "");
 
   const SolverSettings& solver = scenario.solver;
   line("solver:");
@@ -1115,6 +1215,7 @@ std::string describe(const Scenario& scenario) {
   line(fmt::format("  tube_sides: {}", output.tube_sides));
   line(fmt::format("  progress_seconds: {}  # s", format_number(output.progress_seconds)));
   line(fmt::format("  contact_csv: {}", output.contact_csv ? "true" : "false"));
+  line(fmt::format("  checkpoint_every: {}", output.checkpoint_every));
 
   const ContactSettings& contact = scenario.contact;
   line("contact:");
@@ -1149,7 +1250,63 @@ std::string describe(const Scenario& scenario) {
   line(fmt::format("  max_detections: {}", contact.max_detections));
   line(fmt::format("  max_normal_iterations: {}", contact.max_normal_iterations));
   line(fmt::format("  normal_tolerance: {}  # rad", format_number(contact.normal_tolerance)));
+
+  if (!scenario.branches.empty()) {
+    line("branches:");
+    for (const BranchSpec& branch : scenario.branches) {
+      line(fmt::format("  - name: {}", yaml_name(branch.name)));
+      line(fmt::format("    from: {}",
+                       yaml_name(scenario.stages.at(static_cast<std::size_t>(branch.from)).name)));
+      if (branch.friction)
+        line(fmt::format("    contact: {{friction: {}}}", format_number(*branch.friction)));
+      line("    stages:");
+      describe_stages(out, scenario, branch.stages, "    ");
+    }
+  }
   return out;
+}
+
+Scenario branch_scenario(const Scenario& main, std::size_t branch) {
+  const BranchSpec& spec = main.branches.at(branch);
+  Scenario out = main;
+  out.stages.resize(static_cast<std::size_t>(spec.from) + 1);
+  out.stages.insert(out.stages.end(), spec.stages.begin(), spec.stages.end());
+  if (spec.friction) out.contact.friction = *spec.friction;
+  out.origin = BranchOrigin{spec.name, spec.from, main.contact.friction};
+  out.branches.clear();
+  return out;
+}
+
+std::string state_fingerprint_text(const Scenario& scenario, int stages_run) {
+  Scenario made = scenario;
+  made.path.clear();
+  made.output = OutputSettings{};
+  made.branches.clear();
+  for (ConditionSpec& condition : made.conditions) condition.line = 0;
+  if (made.contact.beams.empty()) {  // all beams, as the run resolves it
+    for (std::size_t b = 0; b < made.beams.size(); ++b) made.contact.beams.push_back(static_cast<int>(b));
+  }
+  made.stages.resize(
+      static_cast<std::size_t>(std::clamp(stages_run, 0, static_cast<int>(made.stages.size()))));
+  std::string suffix;
+  if (scenario.origin) {
+    // Up to the end of stage `from` the state is the parent's, made with the parent's friction.
+    made.contact.friction = scenario.origin->parent_friction;
+    if (stages_run > scenario.origin->from + 1) {
+      suffix = fmt::format("# branch: from the end of stage {}, contact.friction {}\n", scenario.origin->from,
+                           format_number(scenario.contact.friction));
+    }
+  }
+  return describe(made) + suffix;
+}
+
+std::uint64_t fingerprint_hash(std::string_view text) {
+  std::uint64_t hash = 14695981039346656037ull;
+  for (const char c : text) {
+    hash ^= static_cast<unsigned char>(c);
+    hash *= 1099511628211ull;
+  }
+  return hash;
 }
 
 }  // namespace nodus::scenario

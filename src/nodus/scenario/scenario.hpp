@@ -3,9 +3,11 @@
 /// Every field maps one to one onto a key of the file; docs/scenario.md documents each key.
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <Eigen/Core>
@@ -63,7 +65,10 @@ struct ConditionSpec {
   Vec3 force = Vec3::Zero();     ///< load: initial force [N]
   Vec3 moment = Vec3::Zero();    ///< load: initial moment [N mm]
   std::optional<Vec3> pivot;     ///< motion, rigid: the point the rotation turns about [mm]
-  int line = 0;                  ///< line of the condition in the file (for messages)
+  /// load: the fixed axis of its moment (unit), the direction of its first nonzero moment value in the file
+  /// (initial value, stages, then the branches' stages); none if every value is zero. Set by the reader.
+  std::optional<Vec3> moment_axis;
+  int line = 0;  ///< line of the condition in the file (for messages)
 };
 
 /// A keyframe of a prescribed motion inside a stage, cumulative since the condition was activated.
@@ -115,6 +120,7 @@ struct OutputSettings {
   int tube_sides = 12;            ///< facets around each tube in the VTK output, >= 3
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
   bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
+  int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
 };
 
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
@@ -140,6 +146,22 @@ struct ContactSettings {
   double normal_tolerance = 1e-3;    ///< loop 3 stops when no normal turns by more than this [rad], > 0
 };
 
+/// A run that continues from the state at the end of one stage of Scenario::stages (key `branches`).
+struct BranchSpec {
+  std::string name;                ///< unique among branches; also its output folder DIR/branches/NAME
+  int from = 0;                    ///< index into Scenario::stages: the branch starts from the end of it
+  std::optional<double> friction;  ///< overrides contact.friction for the branch's stages [-], >= 0
+  std::vector<StageSpec> stages;   ///< run after stage `from`, names unique within the branch
+  int line = 0;                    ///< line of the branch in the file (for messages)
+};
+
+/// What makes the scenario of a branch (branch_scenario) a continuation of its parent run.
+struct BranchOrigin {
+  std::string name;              ///< BranchSpec::name
+  int from = 0;                  ///< stages 0 .. from are the parent's, run with the parent's friction
+  double parent_friction = 0.0;  ///< contact.friction of the parent run [-]
+};
+
 struct Scenario {
   std::string path;  ///< the file it was read from
   std::vector<Material> materials;
@@ -149,6 +171,9 @@ struct Scenario {
   SolverSettings solver;
   OutputSettings output;
   ContactSettings contact;
+  std::vector<BranchSpec> branches;
+  /// Set on the scenario of a branch (branch_scenario), empty for a scenario read from a file.
+  std::optional<BranchOrigin> origin;
 };
 
 /// Reads and validates a scenario file. Throws ScenarioError with a one-line message on bad input.
@@ -159,6 +184,22 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& path);
 
 /// The resolved settings, as YAML-like text, for echoing at start.
 std::string describe(const Scenario& scenario);
+
+/// The scenario of branch `branch` of `main` as a run of its own: the stages of `main` up to and including
+/// the branch's `from`, then the branch's stages; contact.friction overridden if the branch says so; no
+/// branches; `origin` set. A run of it that starts from the state of `main` at the end of stage `from`
+/// continues `main` as the branch asks.
+Scenario branch_scenario(const Scenario& main, std::size_t branch);
+
+/// The text that identifies a saved state of a run of `scenario` in which the first `stages_run` stages were
+/// begun (the one in progress included): describe() of everything that made that state (materials, beams,
+/// conditions, solver, contact, those stages, and for a branch its friction), leaving out what may change
+/// between saving and resuming without changing the state: the file path, line numbers, output settings and
+/// the stages still to come.
+std::string state_fingerprint_text(const Scenario& scenario, int stages_run);
+
+/// 64-bit FNV-1a hash of `text` (the fingerprint of a saved state).
+std::uint64_t fingerprint_hash(std::string_view text);
 
 /// The table of all keys of the file format (name, type, unit, default, range, help) as a markdown table;
 /// the same table drives the reader's messages (see keys.hpp) and is pasted into docs/scenario.md.

@@ -4,6 +4,8 @@
 #include <array>
 #include <cmath>
 #include <limits>
+#include <stdexcept>
+#include <string>
 
 namespace nodus::simulation {
 
@@ -40,6 +42,27 @@ void EquilibriumProblem::set_contact(contact::ContactGeometry geometry, std::vec
   reversible_committed_ = std::move(reversible);
   contact_states_.assign(contact_.elements.size(), ContactState{});
   rebuild_pattern();
+}
+
+ProblemState EquilibriumProblem::saved_state() const {
+  return {x_committed_, time_committed_, contact_, penalty_, reversible_committed_, contact_states_};
+}
+
+void EquilibriumProblem::restore_state(ProblemState state) {
+  if (state.x.size() != model_.num_dofs())
+    throw std::invalid_argument("restore_state: the state has " + std::to_string(state.x.size()) +
+                                " unknowns, the model " + std::to_string(model_.num_dofs()));
+  const std::size_t elements = state.contact.elements.size();
+  if (state.penalty.size() != state.contact.zones.size() || state.reversible.size() != elements ||
+      state.contact_states.size() != elements)
+    throw std::invalid_argument("restore_state: contact data of inconsistent sizes");
+  x_ = x_committed_ = std::move(state.x);
+  time_ = time_committed_ = state.time;
+  contact_ = std::move(state.contact);
+  penalty_ = std::move(state.penalty);
+  reversible_committed_ = std::move(state.reversible);
+  contact_states_ = std::move(state.contact_states);
+  update_free_set();
 }
 
 void EquilibriumProblem::set_contact_laws(double regularization,

@@ -31,6 +31,19 @@ struct ContactState {
   bool slip = false;
 };
 
+/// What the problem carries from one load step to the next (at a committed state): the unknowns and load
+/// time, and the contact elements it was solved with, their zones' penalties, committed reversible
+/// displacements and last evaluated states. Restored into a problem built on the same model and conditions,
+/// it continues the run exactly.
+struct ProblemState {
+  Eigen::VectorXd x;  ///< committed unknowns, nine per node
+  double time = 0.0;  ///< committed load time [s]
+  contact::ContactGeometry contact;
+  std::vector<double> penalty;               ///< per zone [N/mm]
+  std::vector<Eigen::Vector3d> reversible;   ///< committed g_rev per contact element [mm]
+  std::vector<ContactState> contact_states;  ///< per contact element, at the last evaluation
+};
+
 class EquilibriumProblem final : public solver::SteppedProblem {
  public:
   EquilibriumProblem(const model::Model& model, loading::Conditions& conditions, Tolerances tolerances);
@@ -57,6 +70,11 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   double time() const { return time_; }
   const Eigen::VectorXd& state() const { return x_; }
   const Eigen::VectorXd& committed_state() const { return x_committed_; }
+  /// The committed state (call between steps, after commit()).
+  ProblemState saved_state() const;
+  /// Makes `state` the current and committed state; re-reads the free set from the conditions (restore them
+  /// first) and rebuilds the sparse pattern (the solver must re-analyse it).
+  void restore_state(ProblemState state);
   /// f_int - f_ext over all unknowns at the last evaluation (reactions at the prescribed ones).
   const Eigen::VectorXd& full_residual() const { return residual_full_; }
 

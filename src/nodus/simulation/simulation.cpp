@@ -31,8 +31,10 @@ model::Model build_model(const scenario::Scenario& s) {
 }
 
 /// The fixed axis of a load's moment: the direction of its first nonzero value (the reader checked that all
-/// values share it).
+/// values share it, the branches' too, and resolved it).
 loading::Vec3 moment_axis(const scenario::Scenario& s, int c) {
+  if (s.conditions[static_cast<std::size_t>(c)].moment_axis)
+    return *s.conditions[static_cast<std::size_t>(c)].moment_axis;
   if (s.conditions[static_cast<std::size_t>(c)].moment.norm() > 0)
     return s.conditions[static_cast<std::size_t>(c)].moment.normalized();
   for (const scenario::StageSpec& stage : s.stages)
@@ -63,12 +65,13 @@ loading::Conditions build_conditions(const scenario::Scenario& s, const model::M
   return conditions;
 }
 
-/// Checks, before anything runs, that no two conditions active together prescribe the same unknown.
-void check_activation(const scenario::Scenario& s, const model::Model& model) {
-  std::vector<bool> active(s.conditions.size());
-  for (std::size_t c = 0; c < s.conditions.size(); ++c) active[c] = s.conditions[c].initially_active;
-  for (std::size_t i = 0; i < s.stages.size(); ++i) {
-    const scenario::StageSpec& stage = s.stages[i];
+/// Applies the activations and releases of `stages` to `active` and checks after each stage start that no two
+/// conditions active together prescribe the same unknown. `where` names the list in messages ("" or " of
+/// branch 'B'").
+void check_stages(const scenario::Scenario& s, const model::Model& model,
+                  const std::vector<scenario::StageSpec>& stages, std::vector<bool>& active,
+                  const std::string& where) {
+  for (const scenario::StageSpec& stage : stages) {
     for (int c : stage.release) active[static_cast<std::size_t>(c)] = false;
     for (int c : stage.activate) active[static_cast<std::size_t>(c)] = true;
     std::vector<int> owner(static_cast<std::size_t>(model.num_dofs()), -1);
@@ -84,12 +87,27 @@ void check_activation(const scenario::Scenario& s, const model::Model& model) {
           if (o >= 0)
             throw scenario::ScenarioError(fmt::format(
                 "{}:{}: conditions[{}]{}: expected no unknown prescribed by two active conditions, got '{}' "
-                "and '{}' both prescribing unknown {} of node {} of beam '{}' in stage '{}'",
+                "and '{}' both prescribing unknown {} of node {} of beam '{}' in stage '{}'{}",
                 s.path, spec.line, c, rigid ? "" : ".dofs", s.conditions[static_cast<std::size_t>(o)].name,
-                spec.name, d, local, s.beams[static_cast<std::size_t>(spec.beam)].name, stage.name));
+                spec.name, d, local, s.beams[static_cast<std::size_t>(spec.beam)].name, stage.name, where));
           o = static_cast<int>(c);
         }
     }
+  }
+}
+
+/// Checks, before anything runs, that no two conditions active together prescribe the same unknown, in the
+/// stages and in each branch (whose conditions start as they are at the end of its `from` stage).
+void check_activation(const scenario::Scenario& s, const model::Model& model) {
+  std::vector<bool> initial(s.conditions.size());
+  for (std::size_t c = 0; c < s.conditions.size(); ++c) initial[c] = s.conditions[c].initially_active;
+  std::vector<bool> active = initial;
+  check_stages(s, model, s.stages, active, "");
+  for (const scenario::BranchSpec& branch : s.branches) {
+    active = initial;
+    const auto from = s.stages.begin() + branch.from + 1;
+    check_stages(s, model, {s.stages.begin(), from}, active, "");
+    check_stages(s, model, branch.stages, active, fmt::format(" of branch '{}'", branch.name));
   }
 }
 
@@ -155,6 +173,7 @@ Simulation::Simulation(scenario::Scenario scenario)
     contact_forces_ = scenario_.contact.forces;
     laws_ = resolve_laws(scenario_);
     detect_contact();
+    counters_.detection_seconds = detection_seconds_;
   }
 }
 
@@ -183,9 +202,50 @@ double Simulation::stage_end_time(int stage) const {
   return t;
 }
 
-RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
+SimulationState Simulation::snapshot() const {
+  SimulationState state;
+  state.progress = progress_;
+  state.counters = counters_;
+  state.time = time_;
+  state.problem = problem_->saved_state();
+  for (int c = 0; c < conditions_.size(); ++c) state.conditions.push_back(conditions_.state(c));
+  state.contact_beams = contact_beams_;
+  state.contact = contact_;
+  state.contact_states = contact_states_;
+  return state;
+}
+
+void Simulation::restore(SimulationState state, StartKind kind) {
+  const int num_stages = static_cast<int>(scenario_.stages.size());
+  if (state.progress.stage < 0 || state.progress.stage > num_stages ||
+      (state.progress.stage_begun && state.progress.stage == num_stages))
+    throw std::invalid_argument(
+        fmt::format("restore: stage {} of a scenario with {} stages", state.progress.stage, num_stages));
+  if (static_cast<int>(state.conditions.size()) != conditions_.size())
+    throw std::invalid_argument(fmt::format("restore: {} conditions saved, the scenario has {}",
+                                            state.conditions.size(), conditions_.size()));
+  for (int b : state.contact_beams)
+    if (b < 0 || b >= static_cast<int>(model_.beams().size()))
+      throw std::invalid_argument(fmt::format("restore: no beam {} in contact", b));
+  for (int c = 0; c < conditions_.size(); ++c)
+    conditions_.restore(c, state.conditions[static_cast<std::size_t>(c)]);
+  problem_->restore_state(std::move(state.problem));
+  progress_ = std::move(state.progress);
+  counters_ = state.counters;
+  time_ = state.time;
+  contact_beams_ = std::move(state.contact_beams);
+  contact_ = std::move(state.contact);
+  contact_states_ = std::move(state.contact_states);
+  start_kind_ = kind;
+}
+
+RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const RunOptions& options) {
   const auto start = std::chrono::steady_clock::now();
+  const RunCounters base = counters_;  // what a restored state brought
+  const double detection_before = detection_seconds_;
   RunSummary summary;
+  summary.steps = counters_.steps;
+  summary.newton_iterations = counters_.newton_iterations;
   auto linear = solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver));
   solver::NewtonSolver newton(*linear,
                               {scenario_.solver.max_newton_iterations, scenario_.solver.line_search});
@@ -195,59 +255,77 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
   const solver::StepSolver solve_step = [&](solver::SteppedProblem& p) {
     return loops ? loops->solve() : newton.solve(p);
   };
+  // The counters of the run so far: those restored plus this call's.
+  const auto update_counters = [&] {
+    counters_.steps = summary.steps;
+    counters_.newton_iterations = summary.newton_iterations;
+    counters_.wall_seconds =
+        base.wall_seconds + std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    counters_.detection_seconds = base.detection_seconds + (detection_seconds_ - detection_before) +
+                                  (loops ? loops->detection_seconds() : 0.0);
+    counters_.assembly_seconds = base.assembly_seconds + newton.timings().evaluation;
+    counters_.linear_solve_seconds = base.linear_solve_seconds + newton.timings().linear_solve;
+  };
   for (StepObserver* o : observers) o->on_start(*this);
 
-  for (int s = 0; s < static_cast<int>(scenario_.stages.size()); ++s) {
+  for (int s = progress_.stage; s < static_cast<int>(scenario_.stages.size()); ++s) {
     const scenario::StageSpec& stage = scenario_.stages[static_cast<std::size_t>(s)];
-    const double t0 = time_, t1 = time_ + stage.duration;
-    if (!stage.release.empty()) {
-      Eigen::VectorXd residual;
-      problem_->restore();  // evaluate the support forces at the committed state
-      problem_->evaluate(residual, false);
-      for (int c : stage.release)
-        conditions_.release(
-            c, t0, problem_->committed_state(),
-            problem_->full_residual().segment<model::kDofsPerNode>(model::kDofsPerNode * conditions_.node(c)),
-            t1);
+    const solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
+                                      scenario_.solver.easy_iterations};
+    if (!progress_.stage_begun) {
+      const double t0 = time_, t1 = time_ + stage.duration;
+      if (!stage.release.empty()) {
+        Eigen::VectorXd residual;
+        problem_->restore();  // evaluate the support forces at the committed state
+        problem_->evaluate(residual, false);
+        for (int c : stage.release)
+          conditions_.release(c, t0, problem_->committed_state(),
+                              problem_->full_residual().segment<model::kDofsPerNode>(model::kDofsPerNode *
+                                                                                     conditions_.node(c)),
+                              t1);
+      }
+      for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
+      if (!stage.contact_off.empty() || !stage.contact_on.empty()) {
+        for (int b : stage.contact_off) std::erase(contact_beams_, b);
+        for (int b : stage.contact_on)
+          if (std::find(contact_beams_.begin(), contact_beams_.end(), b) == contact_beams_.end())
+            contact_beams_.push_back(b);
+        std::sort(contact_beams_.begin(), contact_beams_.end());
+        if (loops) loops->set_beams(contact_beams_);
+      }
+      conditions_.hold_until(t0);
+      for (const scenario::MotionTarget& m : stage.motions)
+        for (const scenario::Keyframe& k : m.keyframes)
+          conditions_.add_motion_keyframe(m.condition, t0 + k.at * stage.duration, k.translation,
+                                          kDegree * k.rotation);
+      for (const scenario::LoadTarget& l : stage.loads) {
+        const int c = l.condition;
+        conditions_.add_load_keyframe(c, t1, l.force, l.moment.dot(moment_axis(scenario_, c)));
+      }
+      try {
+        problem_->update_free_set();
+      } catch (const std::exception& e) {
+        summary.failure = "stage '" + stage.name + "': " + e.what();
+        break;
+      }
+      progress_.stage = s;
+      progress_.stage_begun = true;
+      progress_.stage_start_time = t0;
+      progress_.stepper = solver::start_stepping(t0, t1, control);
+      newton.reanalyze();
+      if (spdlog::should_log(spdlog::level::debug)) {
+        Eigen::VectorXd residual;
+        problem_->set_time(t0);
+        problem_->evaluate(residual, false);
+        spdlog::debug("stage '{}' starts with |R| = {:.3e} over {} free unknowns", stage.name,
+                      residual.norm(), residual.size());
+      }
     }
-    for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
-    if (!stage.contact_off.empty() || !stage.contact_on.empty()) {
-      for (int b : stage.contact_off) std::erase(contact_beams_, b);
-      for (int b : stage.contact_on)
-        if (std::find(contact_beams_.begin(), contact_beams_.end(), b) == contact_beams_.end())
-          contact_beams_.push_back(b);
-      std::sort(contact_beams_.begin(), contact_beams_.end());
-      if (loops) loops->set_beams(contact_beams_);
-    }
-    conditions_.hold_until(t0);
-    for (const scenario::MotionTarget& m : stage.motions)
-      for (const scenario::Keyframe& k : m.keyframes)
-        conditions_.add_motion_keyframe(m.condition, t0 + k.at * stage.duration, k.translation,
-                                        kDegree * k.rotation);
-    for (const scenario::LoadTarget& l : stage.loads) {
-      const int c = l.condition;
-      conditions_.add_load_keyframe(c, t1, l.force, l.moment.dot(moment_axis(scenario_, c)));
-    }
-    try {
-      problem_->update_free_set();
-    } catch (const std::exception& e) {
-      summary.failure = "stage '" + stage.name + "': " + e.what();
-      break;
-    }
-    newton.reanalyze();
-    if (spdlog::should_log(spdlog::level::debug)) {
-      Eigen::VectorXd residual;
-      problem_->set_time(t0);
-      problem_->evaluate(residual, false);
-      spdlog::debug("stage '{}' starts with |R| = {:.3e} over {} free unknowns", stage.name, residual.norm(),
-                    residual.size());
-    }
+    const double t1 = progress_.stage_start_time + stage.duration;
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
-    solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
-                                scenario_.solver.easy_iterations};
-    const solver::AdvanceResult result =
-        solver::advance(*problem_, solve_step, t0, t1, control, [&](const solver::StepResult& r) {
+    const solver::AdvanceResult result = solver::advance(
+        *problem_, solve_step, t1, control, progress_.stepper, [&](const solver::StepResult& r) {
           time_ = r.time;
           StepRecord record;
           record.step = ++summary.steps;
@@ -257,7 +335,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
           record.cutbacks = r.cutbacks;
           record.residual = r.newton.residual;
           record.increment = r.newton.increment;
+          record.ends_stage = r.time == t1;
           summary.newton_iterations += r.newton.iterations;
+          ++summary.new_steps;
           if (loops) {
             contact_ = problem_->contact_geometry();
             contact_states_ = problem_->contact_states();  // of the committed state
@@ -276,19 +356,36 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers) {
           for (int c = 0; c < conditions_.size(); ++c)
             record.sections.push_back(
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
+          update_counters();
           for (StepObserver* o : observers) o->on_step(*this, record);
+          return options.stop_after_steps <= 0 || summary.new_steps < options.stop_after_steps;
         });
-    if (!result.completed) {
+    if (!result.completed && !result.stopped) {
       summary.failure = "stage '" + stage.name + "': " + result.failure;
       break;
     }
+    if (result.completed) {
+      progress_.stage = s + 1;
+      progress_.stage_begun = false;
+      progress_.stage_start_time = t1;
+      progress_.stepper = solver::StepperState{};
+      update_counters();
+      for (StepObserver* o : observers) o->on_stage_end(*this, s);
+    }
+    if (result.stopped) {
+      summary.interrupted = true;
+      summary.failure = fmt::format("stopped after {} steps, as asked", summary.new_steps);
+      break;
+    }
   }
+  update_counters();
   summary.converged = summary.failure.empty();
-  summary.wall_seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  summary.detection_seconds = detection_seconds_ + (loops ? loops->detection_seconds() : 0.0);
-  summary.assembly_seconds = newton.timings().evaluation;
-  summary.linear_solve_seconds = newton.timings().linear_solve;
-  for (StepObserver* o : observers) o->on_finish(*this, summary);
+  summary.wall_seconds = counters_.wall_seconds;
+  summary.detection_seconds = counters_.detection_seconds;
+  summary.assembly_seconds = counters_.assembly_seconds;
+  summary.linear_solve_seconds = counters_.linear_solve_seconds;
+  if (!summary.interrupted)
+    for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;
 }
 

@@ -1,7 +1,9 @@
 #pragma once
 /// The global algorithm of a quasi-static run [Durville 2012, Sect. 6]: the loading program's stages, each
 /// divided into load steps, each solved by Newton-Raphson. Contact is detected in every converged state (its
-/// forces and loops come with the contact mechanics).
+/// forces and loops come with the contact mechanics). Between two steps the complete state of a run can be
+/// taken (Simulation::snapshot) and a run continued from it (Simulation::restore) exactly as if it had not
+/// stopped: checkpoints, `nodus run --resume` and branches rest on that.
 
 #include <memory>
 #include <string>
@@ -14,10 +16,10 @@
 #include "nodus/model/model.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/contact_loops.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/solver/load_stepping.hpp"
 
 namespace nodus::simulation {
-
-class EquilibriumProblem;
 
 /// One converged load step.
 struct StepRecord {
@@ -37,6 +39,7 @@ struct StepRecord {
   double normal_force = 0.0;                    ///< sum of the normal reactions [N]
   double tangential_force = 0.0;                ///< sum of the friction force magnitudes [N]
   int slipping = 0;                             ///< contact elements sliding (friction at mu R_N)
+  bool ends_stage = false;                      ///< the step reached the end of its stage
 };
 
 struct RunSummary {
@@ -48,6 +51,57 @@ struct RunSummary {
   double assembly_seconds = 0.0;      ///< in residual and tangent evaluations inside Newton (line search too)
   double linear_solve_seconds = 0.0;  ///< in the sparse analysis, factorisation and solves
   std::string failure;                ///< why the run stopped early
+  /// Stopped on request (RunOptions::stop_after_steps), as if killed: on_finish was not called.
+  bool interrupted = false;
+  /// Steps converged by this call of run() (`steps` counts those of a restored state too).
+  int new_steps = 0;
+};
+
+/// The run's cumulative counters, carried by a saved state.
+struct RunCounters {
+  int steps = 0;  ///< converged steps
+  int newton_iterations = 0;
+  double wall_seconds = 0.0;  ///< [s], as RunSummary
+  double detection_seconds = 0.0;
+  double assembly_seconds = 0.0;
+  double linear_solve_seconds = 0.0;
+};
+
+/// Where a run stands in its loading program between two steps.
+struct RunProgress {
+  int stage = 0;  ///< the stage in progress, or the next one to begin (the number of stages: all done)
+  /// The start of `stage` (releases, activations, contact changes, keyframes) is applied and its stepping
+  /// under way.
+  bool stage_begun = false;
+  double stage_start_time = 0.0;  ///< load time at the start of `stage` [s], when begun
+  solver::StepperState stepper;   ///< the stepping inside `stage`, when begun
+};
+
+/// The complete state of a run between two steps. Restored into a Simulation of the same scenario, the run
+/// continues exactly as the one that saved it (output/checkpoint.hpp stores it in a file).
+struct SimulationState {
+  RunProgress progress;
+  RunCounters counters;
+  double time = 0.0;  ///< load time of the last converged state [s]
+  ProblemState problem;
+  std::vector<loading::ConditionState> conditions;  ///< per condition
+  std::vector<int> contact_beams;                   ///< the beams in contact now
+  contact::ContactGeometry contact;                 ///< Simulation::contact(): the last detection
+  std::vector<ContactState> contact_states;         ///< Simulation::contact_states()
+};
+
+/// How a Simulation begins its run.
+enum class StartKind {
+  fresh,     ///< from the initial state
+  resumed,   ///< from a saved state of an interrupted run of the same scenario (outputs go on from it)
+  branched,  ///< from the state of the parent run at the end of a branch's `from` stage (outputs start anew)
+};
+
+/// Options of one call of Simulation::run.
+struct RunOptions {
+  /// For tests: stop the run, as if it were killed, after this many steps converged in this call (after the
+  /// observers' on_step and, at a stage end, on_stage_end); 0: never.
+  int stop_after_steps = 0;
 };
 
 class Simulation;
@@ -57,9 +111,14 @@ class StepObserver {
  public:
   virtual ~StepObserver() = default;
   virtual void on_start(const Simulation& /*sim*/) {}
+  /// Called when a stage begins, or when a run resumes inside it.
   virtual void on_stage(const Simulation& /*sim*/, int /*stage*/) {}
   /// Called after each converged step; sim.state() is the converged state.
   virtual void on_step(const Simulation& /*sim*/, const StepRecord& /*record*/) {}
+  /// Called when a stage is completed (after the on_step of its last step).
+  virtual void on_stage_end(const Simulation& /*sim*/, int /*stage*/) {}
+  /// Called when the run ends, converged or not; not when it was stopped on request (RunOptions), which acts
+  /// as a kill.
   virtual void on_finish(const Simulation& /*sim*/, const RunSummary& /*summary*/) {}
 };
 
@@ -87,9 +146,22 @@ class Simulation {
   double time() const { return time_; }
   /// Load time at the end of each stage [s].
   double stage_end_time(int stage) const;
+  /// Converged steps so far (those of a restored state included).
+  int steps() const { return counters_.steps; }
+  /// Where the run stands (valid between steps: in the observers' calls, before and after run()).
+  const RunProgress& progress() const { return progress_; }
+  StartKind start_kind() const { return start_kind_; }
 
-  /// Runs every stage. Observers are called in order.
-  RunSummary run(const std::vector<StepObserver*>& observers);
+  /// The complete state of the run, valid between steps: in the observers' on_start, on_step and
+  /// on_stage_end, and before and after run().
+  SimulationState snapshot() const;
+  /// Continues from `state` (a snapshot() of a Simulation of the same scenario, or for a branch of its
+  /// parent, see scenario::branch_scenario); call before run(). Throws std::invalid_argument if the state
+  /// does not fit the model.
+  void restore(SimulationState state, StartKind kind);
+
+  /// Runs the stages left (all of them unless restored). Observers are called in order.
+  RunSummary run(const std::vector<StepObserver*>& observers, const RunOptions& options = {});
 
  private:
   scenario::Scenario scenario_;
@@ -102,9 +174,12 @@ class Simulation {
   std::vector<int> contact_beams_;  ///< the beams in contact now (stages take tools out and put them back)
   contact::ContactGeometry contact_;
   std::vector<ContactState> contact_states_;  ///< per element of contact_, at the last converged step
-  double detection_seconds_ = 0.0;
+  double detection_seconds_ = 0.0;            ///< in detect_contact() since construction
   bool contact_forces_ = false;
   ContactLawSettings laws_;
+  RunProgress progress_;
+  RunCounters counters_;
+  StartKind start_kind_ = StartKind::fresh;
 
   /// Detects contact in the committed state (when the scenario has contact).
   void detect_contact();

@@ -16,20 +16,33 @@ AdvanceResult advance(SteppedProblem& problem, NewtonSolver& newton, double t0, 
 
 AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t0, double t1,
                       const StepControl& control, const std::function<void(const StepResult&)>& on_step) {
+  StepperState state = start_stepping(t0, t1, control);
+  return advance(problem, solve, t1, control, state, [&on_step](const StepResult& r) {
+    on_step(r);
+    return true;
+  });
+}
+
+StepperState start_stepping(double t0, double t1, const StepControl& control) {
+  StepperState state;
+  state.time = t0;
+  state.step = std::min(control.nominal_step, t1 - t0);
+  return state;
+}
+
+AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t1, const StepControl& control,
+                      StepperState& state, const std::function<bool(const StepResult&)>& on_step) {
   AdvanceResult result;
-  const double span = t1 - t0;
   const double eps = 1e-12 * std::max(1.0, std::abs(t1));
-  double t = t0;
-  double step = std::min(control.nominal_step, span);
+  double& t = state.time;
+  double& step = state.step;
   int cutbacks = 0;
   // Secant predictor: the free unknowns move as in the last converged step, scaled to the new step.
-  Eigen::VectorXd previous;  // unknowns at the start of the last converged step
-  double previous_step = 0.0;
   while (t1 - t > eps) {
     step = std::min(step, t1 - t);
     const Eigen::VectorXd start = problem.unknowns();
-    if (previous.size() == start.size() && previous_step > 0)
-      problem.set_unknowns(start + (step / previous_step) * (start - previous));
+    if (state.previous.size() == start.size() && state.previous_step > 0)
+      problem.set_unknowns(start + (step / state.previous_step) * (start - state.previous));
     problem.set_time(t + step);
     NewtonReport report = solve(problem);
     if (!report.converged) {
@@ -44,16 +57,22 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
       spdlog::debug("cutback {} at load time {:.6g}: {}; new step {:.3g}", cutbacks, t, report.failure, step);
       continue;
     }
+    const double converged_step = step;
     t += step;
     if (t1 - t <= eps) t = t1;
     problem.commit();
     ++result.steps;
-    on_step({t, step, cutbacks, report});
-    previous = start;
-    previous_step = step;
+    state.previous = start;
+    state.previous_step = converged_step;
     if (report.iterations <= control.easy_iterations)
       step = std::min(control.nominal_step, step * control.growth);
+    const int step_cutbacks = cutbacks;
     cutbacks = 0;
+    if (!on_step({t, converged_step, step_cutbacks, report})) {
+      result.stopped = true;
+      result.completed = !(t1 - t > eps);
+      return result;
+    }
   }
   result.completed = true;
   return result;

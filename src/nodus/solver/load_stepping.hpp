@@ -5,6 +5,8 @@
 #include <functional>
 #include <string>
 
+#include <Eigen/Core>
+
 #include "nodus/solver/newton.hpp"
 #include "nodus/solver/nonlinear_problem.hpp"
 
@@ -36,14 +38,35 @@ struct StepResult {
 };
 
 struct AdvanceResult {
-  bool completed = false;
+  bool completed = false;  ///< t1 reached
+  bool stopped = false;    ///< on_step asked to stop (completed says whether that was at t1)
   int steps = 0;
   std::string failure;
 };
 
+/// Where the stepping of an interval stands between two steps: with it, advance() continues an interval
+/// exactly as if it had never been left (a saved run resumed).
+struct StepperState {
+  double time = 0.0;  ///< load time reached (committed)
+  double step = 0.0;  ///< size of the next step attempt, after growth
+  /// Free unknowns at the start of the last converged step, for the secant predictor; empty: none (no step
+  /// converged yet in this interval).
+  Eigen::VectorXd previous;
+  double previous_step = 0.0;  ///< size of the last converged step (0: none)
+};
+
+/// The state at the start of an interval [t0, t1]: the first step is the nominal one, or the whole interval
+/// if that is shorter; no predictor.
+StepperState start_stepping(double t0, double t1, const StepControl& control);
+
 /// Solves one step from the problem's current unknowns at its current time (Newton, possibly inside outer
 /// fixed-point loops); the report's iterations count every Newton iteration.
 using StepSolver = std::function<NewtonReport(SteppedProblem&)>;
+
+/// Advances from `state` to t1, updating `state`. After each converged step the problem is committed,
+/// `state` updated, and `on_step` called; it returns false to stop the stepping there.
+AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t1, const StepControl& control,
+                      StepperState& state, const std::function<bool(const StepResult&)>& on_step);
 
 /// Advances from t0 to t1. After each converged step the problem is committed and `on_step` is called.
 AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t0, double t1,

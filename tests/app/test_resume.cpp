@@ -1,0 +1,365 @@
+// Saving, resuming and branching runs from the command line: a run stopped (as if killed) with
+// --stop-after-steps and continued with --resume leaves exactly the files of the run that was never stopped
+// (the reference: the same computation in one go); a branch with the main run's friction and stages gives
+// the main run's final state (the same computation done two ways); bad input gives one line, exit status 2,
+// and leaves the output folder as it was.
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+
+struct Result {
+  int status;
+  std::string err;
+};
+
+fs::path scratch() {
+  const fs::path dir = fs::temp_directory_path() / ("nodus_resume_" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+Result run_nodus(const std::string& args) {
+  const fs::path err = scratch() / "stderr.txt";
+  const std::string cmd = std::string(NODUS_BINARY) + " " + args + " 2> " + err.string() + " > /dev/null";
+  const int raw = std::system(cmd.c_str());
+  std::ifstream in(err);
+  std::stringstream text;
+  text << in.rdbuf();
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
+}
+
+fs::path write(const std::string& name, const std::string& text) {
+  const fs::path p = scratch() / name;
+  std::ofstream(p) << text;
+  return p;
+}
+
+std::string read(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+std::string replaced(std::string text, const std::string& from, const std::string& to) {
+  const auto at = text.find(from);
+  EXPECT_NE(at, std::string::npos) << from;
+  if (at != std::string::npos) text.replace(at, from.size(), to);
+  return text;
+}
+
+/// Every file under `dir` by relative path, with its content; checkpoints and summary.json (they hold wall
+/// times) left out.
+std::map<std::string, std::string> results(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = fs::relative(entry.path(), dir).generic_string();
+    if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
+    files[name] = read(entry.path());
+  }
+  return files;
+}
+
+void expect_same_results(const fs::path& reference, const fs::path& dir) {
+  const auto a = results(reference), b = results(dir);
+  std::vector<std::string> names_a, names_b;
+  for (const auto& [name, text] : a) names_a.push_back(name);
+  for (const auto& [name, text] : b) names_b.push_back(name);
+  ASSERT_EQ(names_a, names_b);
+  for (const auto& [name, text] : a) EXPECT_TRUE(text == b.at(name)) << name << " differs";
+}
+
+std::vector<std::string> lines(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);) out.push_back(line);
+  return out;
+}
+
+/// The value of column `column` of each data row of a CSV text.
+std::vector<double> column(const std::string& csv, const std::string& name) {
+  const std::vector<std::string> rows = lines(csv);
+  std::vector<std::string> header;
+  std::stringstream h(rows.at(0));
+  for (std::string cell; std::getline(h, cell, ',');) header.push_back(cell);
+  const auto at = std::find(header.begin(), header.end(), name) - header.begin();
+  std::vector<double> values;
+  for (std::size_t r = 1; r < rows.size(); ++r) {
+    std::stringstream row(rows[r]);
+    std::string cell;
+    for (long i = 0; i <= at; ++i) std::getline(row, cell, ',');
+    values.push_back(std::stod(cell));
+  }
+  return values;
+}
+
+/// A tool beam presses a beam on two supports, drags it with friction, moves back and is lifted off:
+/// four stages, 11 steps, contact forces and friction (examples/tool_drag.yaml, coarser).
+const std::string kDrag = R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: beam, material: nylon, radius: 0.1, length: 10, elements: 20, start: [-5, 0, 0],
+     direction: [1, 0, 0], director1: [0, 1, 0]}
+  - {name: tool, material: nylon, radius: 0.2, length: 2, elements: 2, start: [0, -1, 0.31],
+     direction: [0, 1, 0], director1: [1, 0, 0]}
+conditions:
+  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
+  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
+  - {name: press, type: rigid, beam: tool}
+stages:
+  - name: press
+    steps: 3
+    motions:
+      press: {translation: [0, 0, -0.1]}
+  - name: drag
+    steps: 4
+    motions:
+      press: {translation: [0, 0.3, -0.1]}
+  - name: back
+    steps: 3
+    motions:
+      press: {translation: [0, 0.1, -0.1]}
+  - name: lift
+    steps: 1
+    contact_off: [tool]
+contact:
+  self_contact: false
+  friction: 0.3
+output:
+  vtk_every: 2
+  contact_csv: true
+)";
+constexpr int kDragSteps = 11;  // press 3, drag 4, back 3, lift 1: no cutbacks
+
+/// The branches: `same` repeats the main run's stages after drag with its friction, `mu_0.1` moves back with
+/// less friction.
+const std::string kBranches = R"(branches:
+  - name: same
+    from: drag
+    stages:
+      - name: back
+        steps: 3
+        motions:
+          press: {translation: [0, 0.1, -0.1]}
+      - name: lift
+        steps: 1
+        contact_off: [tool]
+  - name: mu_0.1
+    from: drag
+    contact: {friction: 0.1}
+    stages:
+      - name: back
+        steps: 3
+        motions:
+          press: {translation: [0, 0.1, -0.1]}
+)";
+
+/// Runs `scenario` into DIR/`name`_ref in one go.
+fs::path reference_run(const fs::path& scenario, const std::string& name) {
+  const fs::path out = scratch() / (name + "_ref");
+  fs::remove_all(out);
+  const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q");
+  EXPECT_EQ(r.status, 0) << r.err;
+  return out;
+}
+
+/// Runs `scenario` stopped after each of `stops` steps in turn (each a new process, the later ones with
+/// --resume), then to its end with --resume; returns the output folder.
+fs::path interrupted_run(const fs::path& scenario, const std::string& name, const std::vector<int>& stops) {
+  const fs::path out = scratch() / name;
+  fs::remove_all(out);
+  bool first = true;
+  for (const int stop : stops) {
+    const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q" +
+                               (first ? "" : " --resume") + " --stop-after-steps " + std::to_string(stop));
+    EXPECT_EQ(r.status, 3) << r.err;
+    EXPECT_NE(r.err.find("stopped after " + std::to_string(stop) + " converged steps, as asked"),
+              std::string::npos)
+        << r.err;
+    EXPECT_FALSE(fs::exists(out / "summary.json"));  // as if killed
+    first = false;
+  }
+  const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --resume");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(r.err.find("resuming from " + (out / "checkpoints").string()), std::string::npos) << r.err;
+  return out;
+}
+
+TEST(Resume, EqualsTheUninterruptedRun) {
+  const fs::path scenario = write("drag.yaml", kDrag);
+  const fs::path reference = reference_run(scenario, "drag");
+  ASSERT_EQ(lines(read(reference / "steps.csv")).size(), kDragSteps + 1u);
+  for (const char* name : {"000_press", "001_drag", "002_back", "003_lift"})
+    EXPECT_TRUE(fs::exists(reference / "checkpoints" / (std::string(name) + ".nodus-state"))) << name;
+  EXPECT_FALSE(fs::exists(reference / "checkpoints" / "latest.nodus-state"));
+
+  // Inside drag (resumes from the end of press: steps 4 and 5 are done again), exactly at the end of drag,
+  // and twice in a row (inside drag, then at its end after resuming from the end of press).
+  for (const std::vector<int>& stops : {std::vector<int>{5}, std::vector<int>{7}, std::vector<int>{4, 4}}) {
+    SCOPED_TRACE("stops " + std::to_string(stops.front()));
+    expect_same_results(reference, interrupted_run(scenario, "drag_" + std::to_string(stops.front()), stops));
+  }
+  // The run is complete: --resume says so.
+  const Result again =
+      run_nodus("run " + scenario.string() + " --out " + reference.string() + " -q --resume");
+  EXPECT_EQ(again.status, 0);
+  EXPECT_NE(again.err.find("already complete"), std::string::npos) << again.err;
+}
+
+TEST(Resume, FromIntermediateCheckpoints) {
+  // With checkpoint_every: 2, latest.nodus-state is written after steps 2, 4, 6 and 8 (3, 7, 10 and 11 end
+  // stages): a stop after step 6 resumes inside drag from step 6, one after step 9 inside back from step 8.
+  const fs::path scenario =
+      write("drag_every.yaml",
+            replaced(kDrag, "  contact_csv: true\n", "  contact_csv: true\n  checkpoint_every: 2\n"));
+  const fs::path reference = reference_run(scenario, "drag_every");
+  EXPECT_TRUE(fs::exists(reference / "checkpoints" / "latest.nodus-state"));
+  for (const int stop : {6, 9}) {
+    SCOPED_TRACE("stop " + std::to_string(stop));
+    const fs::path out = scratch() / ("drag_every_" + std::to_string(stop));
+    fs::remove_all(out);
+    const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+    EXPECT_EQ(run_nodus(run + " --stop-after-steps " + std::to_string(stop)).status, 3);
+    const Result r = run_nodus(run + " --resume");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find("latest.nodus-state (step " + std::to_string(stop - stop % 2) + ", "),
+              std::string::npos)
+        << r.err;
+    expect_same_results(reference, out);
+  }
+}
+
+TEST(Branches, ContinueTheMainRun) {
+  const fs::path scenario = write("branches.yaml", kDrag + kBranches);
+  const fs::path reference = reference_run(scenario, "branches");
+  const fs::path main_only = reference_run(write("main.yaml", kDrag), "main_only");
+  // The main run is the same with or without branches.
+  for (const char* name : {"final_nodes.csv", "steps.csv", "contact_final.csv"})
+    EXPECT_EQ(read(reference / name), read(main_only / name)) << name;
+  for (const char* name :
+       {"steps.csv", "final_nodes.csv", "contact_final.csv", "zones_final.csv", "result.pvd", "contact.pvd",
+        "summary.json", "vtk/step_000007.vtp", "checkpoints/003_lift.nodus-state"})
+    EXPECT_TRUE(fs::exists(reference / "branches" / "same" / name)) << name;
+
+  // The same stages with the same friction, continued from the end of drag: the main run's end, bitwise.
+  const fs::path same = reference / "branches" / "same";
+  EXPECT_EQ(read(same / "final_nodes.csv"), read(reference / "final_nodes.csv"));
+  EXPECT_EQ(read(same / "contact_final.csv"), read(reference / "contact_final.csv"));
+  const std::vector<std::string> main_rows = lines(read(reference / "steps.csv"));
+  const std::vector<std::string> branch_rows = lines(read(same / "steps.csv"));
+  ASSERT_EQ(branch_rows.size(), 1u + 4u);  // header, steps 8 to 11
+  EXPECT_EQ(branch_rows[0], main_rows[0]);
+  for (std::size_t r = 1; r < branch_rows.size(); ++r) EXPECT_EQ(branch_rows[r], main_rows[r + 7]);
+
+  // Less friction: on the way back the tool slides, with friction forces mu R_N: 0.1 R_N in the branch,
+  // 0.3 R_N in the main run, for about the same normal force.
+  const std::string low = read(reference / "branches" / "mu_0.1" / "steps.csv");
+  const std::string high = read(reference / "steps.csv");
+  const std::vector<double> t_low = column(low, "tangential_force"), n_low = column(low, "normal_force");
+  const std::vector<double> t_high = column(high, "tangential_force"), n_high = column(high, "normal_force");
+  ASSERT_EQ(t_low.size(), 3u);
+  for (std::size_t i = 0; i < t_low.size(); ++i) {
+    EXPECT_GT(n_low[i], 0.0);
+    EXPECT_NEAR(t_low[i], 0.1 * n_low[i], 1e-6 * n_low[i]) << "step " << 8 + i;
+    EXPECT_NEAR(t_high[7 + i], 0.3 * n_high[7 + i], 1e-6 * n_high[7 + i]) << "step " << 8 + i;
+    EXPECT_NEAR(n_low[i], n_high[7 + i], 0.05 * n_high[7 + i]) << "step " << 8 + i;
+  }
+  EXPECT_EQ(column(low, "step"), (std::vector<double>{8, 9, 10}));
+
+  const std::string summary = read(reference / "summary.json");
+  EXPECT_NE(summary.find("\"branches\": ["), std::string::npos) << summary;
+  EXPECT_NE(summary.find("\"name\": \"mu_0.1\",\n      \"from\": \"drag\",\n      \"friction\": 0.1,\n      "
+                         "\"folder\": \"branches/mu_0.1\",\n      \"converged\": true"),
+            std::string::npos)
+      << summary;
+  EXPECT_NE(read(same / "summary.json").find("\"branch\": \"same\""), std::string::npos);
+}
+
+TEST(Branches, ResumeInsideABranch) {
+  const fs::path scenario = write("branches_resume.yaml", kDrag + kBranches);
+  const fs::path reference = reference_run(scenario, "branches_resume");
+  // 11 main steps, then 4 in `same` (back 3, lift 1), then 3 in `mu_0.1`: the first stop is at the end of
+  // same's back (its own checkpoint), the second after its last step (before its summary), the third inside
+  // mu_0.1 (which starts again from the main run's end of drag); the last resume skips the finished branch.
+  const fs::path out = interrupted_run(scenario, "branches_resumed", {14, 1, 2});
+  expect_same_results(reference, out);
+  EXPECT_EQ(read(out / "summary.json").find("\"converged\": false"), std::string::npos);
+}
+
+TEST(Resume, BadInputIsRefusedAndChangesNothing) {
+  const fs::path scenario = write("bad_base.yaml", kDrag);
+  const fs::path out = scratch() / "bad_out";
+  fs::remove_all(out);
+  ASSERT_EQ(
+      run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --stop-after-steps 5").status,
+      3);
+  const auto before = results(out);
+  const std::string checkpoint = read(out / "checkpoints" / "000_press.nodus-state");
+
+  struct Case {
+    std::string name, text, args, expect;
+  };
+  const std::string modulus = replaced(kDrag, "young_modulus: 4000", "young_modulus: 3000");
+  const Case cases[] = {
+      {"other_modulus.yaml", modulus, " --resume",
+       "000_press.nodus-state: checkpoint: expected a state of this scenario (fingerprint "},
+      {"from_no_stage.yaml", kDrag + replaced(kBranches, "from: drag", "from: drug"), "",
+       ":36: branches[0].from: expected the name of a stage of stages (press | drag | back | lift), got "
+       "drug"},
+      {"duplicate.yaml", kDrag + replaced(kBranches, "name: mu_0.1", "name: same"), "",
+       ":45: branches[1].name: expected a name unique among branches (already used at line 35), got same"},
+      {"no_contact.yaml",
+       replaced(replaced(kDrag, "contact:\n  self_contact: false\n  friction: 0.3\n", ""),
+                "    contact_off: [tool]\n", "") +
+           replaced(kBranches, "        contact_off: [tool]\n", ""),
+       "", ": branches[1].contact: expected no contact override in a scenario without a contact section"},
+  };
+  for (const Case& c : cases) {
+    SCOPED_TRACE(c.name);
+    const fs::path file = write(c.name, c.text);
+    const Result r = run_nodus("run " + file.string() + " --out " + out.string() + " -q" + c.args);
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find(c.expect), std::string::npos) << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+    EXPECT_TRUE(results(out) == before) << "the output folder changed";
+    EXPECT_EQ(read(out / "checkpoints" / "000_press.nodus-state"), checkpoint);
+  }
+  // The reader's errors: nothing is written in a new folder either.
+  const fs::path fresh = scratch() / "bad_fresh";
+  fs::remove_all(fresh);
+  EXPECT_EQ(run_nodus("run " + (scratch() / "duplicate.yaml").string() + " --out " + fresh.string()).status,
+            2);
+  EXPECT_FALSE(fs::exists(fresh));
+
+  // --resume without a checkpoint: in a folder without one, and in one that does not exist.
+  fs::remove_all(out / "checkpoints");
+  for (const fs::path& dir : {out, fresh}) {
+    const Result r = run_nodus("run " + scenario.string() + " --out " + dir.string() + " -q --resume");
+    EXPECT_EQ(r.status, 2) << r.err;
+    EXPECT_NE(r.err.find("--resume: expected a checkpoint (*.nodus-state) in " +
+                         (dir / "checkpoints").string() + ", got none: nothing to resume"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << "one line: " << r.err;
+  }
+  EXPECT_FALSE(fs::exists(fresh));
+  EXPECT_TRUE(results(out) == before);
+}
+
+}  // namespace
