@@ -187,10 +187,11 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
                                          "normal_force",
                                          "tangential_force",
                                          "slipping",
+                                         "stabilization_force",
                                          "l0_fx"};
   ASSERT_GE(steps[0].size(), leading.size());
-  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 16), leading);
-  EXPECT_EQ(steps[0].size(), 15u + 6u * 4u);
+  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 17), leading);
+  EXPECT_EQ(steps[0].size(), 16u + 6u * 4u);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const simulation::StepRecord& r = records[k];
     const auto& f = steps[1 + k];

@@ -72,6 +72,12 @@ constexpr std::array kKeys{
   KeyDoc{"stages[].name", "string", "", "required", "unique among stages", "name shown in progress output"},
   KeyDoc{"stages[].steps", "integer", "", "required", ">= 1", "number of nominal load steps"},
   KeyDoc{"stages[].duration", "number", "s", "1", "> 0", "length of the stage in load time"},
+  KeyDoc{"stages[].stabilization", "number", "N s/mm^2", "0", ">= 0",
+         "viscous drag per unit length on the beam axes during the stage, force = -value * (velocity in load "
+         "time); a numerical aid to pass snap-throughs, off (0) where results are read (docs/model.md)"},
+  KeyDoc{"stages[].stabilization_end", "number", "N s/mm^2", "stabilization", ">= 0",
+         "the drag at the stage end, reached geometrically from stabilization; 0: decays to 1e-6 of it and is "
+         "exactly 0 at the stage end"},
   KeyDoc{"stages[].activate", "list", "", "[]", "of condition names",
          "conditions switched on at the start of the stage"},
   KeyDoc{"stages[].release", "list", "", "[]", "of condition names, none also in activate",

@@ -747,6 +747,15 @@ std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, cons
     if (const auto duration = map.get("duration")) {
       stage.duration = reader.number(*duration, [](double v) { return v > 0.0; });
     }
+    if (const auto value = map.get("stabilization")) {
+      stage.stabilization = reader.number(*value, [](double v) { return v >= 0.0; });
+    }
+    stage.stabilization_end = stage.stabilization;
+    if (const auto value = map.get("stabilization_end")) {
+      stage.stabilization_end = reader.number(*value, [](double v) { return v >= 0.0; });
+      if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
+        reader.fail(*value, "0 when stabilization is 0 (the decay is geometric from stabilization)");
+    }
 
     stage.activate = read_condition_names(reader, map.get("activate"), condition_names, "activate");
     const auto release = map.get("release");
@@ -1079,6 +1088,10 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
     line(fmt::format("  - name: {}", yaml_name(stage.name)));
     line(fmt::format("    steps: {}", stage.steps));
     line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
+    if (stage.stabilization > 0.0) {
+      line(fmt::format("    stabilization: {}  # N s/mm^2", format_number(stage.stabilization)));
+      line(fmt::format("    stabilization_end: {}  # N s/mm^2", format_number(stage.stabilization_end)));
+    }
     line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
     line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
     const auto beam_list = [&](const std::vector<int>& beams) {

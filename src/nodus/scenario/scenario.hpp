@@ -100,6 +100,10 @@ struct StageSpec {
   std::vector<LoadTarget> loads;
   std::vector<int> contact_off;  ///< beams taken out of contact at the start of the stage (tools removed)
   std::vector<int> contact_on;   ///< beams put back into contact at the start of the stage
+  /// Viscous stabilisation [N s/mm^2] at the start and at the end of the stage (geometric in between; an end
+  /// value of 0 decays to 1e-6 of the start value and is exactly 0 at the stage end); 0: none.
+  double stabilization = 0.0;
+  double stabilization_end = 0.0;
 };
 
 enum class LinearSolverKind { cholmod, umfpack };

@@ -32,6 +32,16 @@ EquilibriumProblem::EquilibriumProblem(const model::Model& model, loading::Condi
   force_floor_ = 10.0 * std::numeric_limits<double>::epsilon() * stiffest * (extent / shortest) *
                  std::sqrt(static_cast<double>(model_.num_dofs()));
   element_nodes_ = model_.element_nodes();
+  // Each quadratic element of length h gives h/6, 2h/3, h/6 to its nodes (Simpson's rule): the weights of a
+  // beam add up to its length.
+  node_length_.assign(static_cast<std::size_t>(model_.num_dofs() / model::kDofsPerNode), 0.0);
+  for (const beam::Beam& b : model_.beams())
+    for (int e = 0; e < b.num_elements(); ++e) {
+      const double h = b.element_length();
+      node_length_[static_cast<std::size_t>(b.node(2 * e))] += h / 6.0;
+      node_length_[static_cast<std::size_t>(b.node(2 * e + 1))] += 2.0 * h / 3.0;
+      node_length_[static_cast<std::size_t>(b.node(2 * e + 2))] += h / 6.0;
+    }
   update_free_set();
 }
 
@@ -138,6 +148,7 @@ void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) 
   if (!contact_.elements.empty()) {
     add_contact(with_tangent ? assembler_.get() : nullptr);
   }
+  add_stabilization(with_tangent ? assembler_.get() : nullptr);
   residual.resize(size());
   for (int i = 0; i < size(); ++i) residual[i] = residual_full_[free_dofs_[static_cast<std::size_t>(i)]];
   // Force scale: the applied loads and the support reactions.
@@ -146,6 +157,37 @@ void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) 
     if (prescribed_[static_cast<std::size_t>(i)]) reactions += residual_full_[i] * residual_full_[i];
   residual_tolerance_ =
       std::max(tolerances_.residual * std::max(f_ext_.norm(), std::sqrt(reactions)), force_floor_);
+}
+
+double Stabilization::at(double t) const {
+  if (start <= 0.0 || t1 <= t0) return 0.0;
+  const double u = std::clamp((t - t0) / (t1 - t0), 0.0, 1.0);
+  if (end > 0.0) return start * std::pow(end / start, u);
+  return u >= 1.0 - 1e-12 ? 0.0 : start * std::pow(1e-6, u);
+}
+
+void EquilibriumProblem::add_stabilization(solver::SparseAssembler* assembler) {
+  stabilization_force_ = 0.0;
+  const double dt = time_ - time_committed_;
+  const double eta = stabilization_.at(time_);
+  if (eta <= 0.0 || dt <= 0.0) return;
+  double squared = 0.0;
+  Eigen::Matrix<double, model::kDofsPerNode, model::kDofsPerNode> k;
+  for (std::size_t n = 0; n < node_length_.size(); ++n) {
+    const double c = eta * node_length_[n] / dt;
+    const int i = model::kDofsPerNode * static_cast<int>(n);
+    // Prescribed nodes feel the drag too: their supports carry it (a tool dragged through the same medium).
+    const Eigen::Vector3d drag = c * (x_.segment<3>(i) - x_committed_.segment<3>(i));
+    residual_full_.segment<3>(i) += drag;
+    squared += drag.squaredNorm();
+    if (assembler) {
+      k.setZero();
+      k.topLeftCorner<3, 3>().diagonal().setConstant(c);
+      const int block[1] = {static_cast<int>(n)};
+      assembler->add(block, k);
+    }
+  }
+  stabilization_force_ = std::sqrt(squared);
 }
 
 double EquilibriumProblem::scaled_increment(const Eigen::VectorXd& du) const {

@@ -44,6 +44,16 @@ struct ProblemState {
   std::vector<ContactState> contact_states;  ///< per contact element, at the last evaluation
 };
 
+/// Viscous stabilisation of a stage: a drag -c_n (x_n - x_n,committed) / dt on the centre of every node n,
+/// c_n the node's share of the beam length times the coefficient eta(t) [N s/mm^2], which goes geometrically
+/// from `start` at t0 to `end` at t1 (end 0: to 1e-6 start, and exactly 0 at t1).
+struct Stabilization {
+  double t0 = 0.0, t1 = 0.0;      ///< the stage [s]
+  double start = 0.0, end = 0.0;  ///< eta at t0 and t1 [N s/mm^2]
+  /// eta at load time t [N s/mm^2].
+  double at(double t) const;
+};
+
 class EquilibriumProblem final : public solver::SteppedProblem {
  public:
   EquilibriumProblem(const model::Model& model, loading::Conditions& conditions, Tolerances tolerances);
@@ -64,6 +74,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
 
   // solver::SteppedProblem
   void set_time(double t) override;
+  /// The viscous stabilisation of the stage being solved (default: none).
+  void set_stabilization(const Stabilization& s) { stabilization_ = s; }
+  /// |drag force| over all nodes at the last evaluation [N] (0 without stabilisation).
+  double stabilization_force() const { return stabilization_force_; }
   void commit() override;
   void restore() override;
 
@@ -115,7 +129,13 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   double regularization_ = 0.0;
   std::optional<contact::FrictionLaw> friction_;
 
+  Stabilization stabilization_;
+  double stabilization_force_ = 0.0;
+  std::vector<double> node_length_;  ///< per node: its share of the beam length (Simpson weights) [mm]
+
   void rebuild_pattern();
+  /// Adds the stabilisation drag to residual_full_ and, if `assembler`, its tangent.
+  void add_stabilization(solver::SparseAssembler* assembler);
   /// Adds the contact forces to residual_full_ and, if `assembler`, their tangent.
   void add_contact(solver::SparseAssembler* assembler);
 };

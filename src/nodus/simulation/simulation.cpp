@@ -322,6 +322,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
       }
     }
     const double t1 = progress_.stage_start_time + stage.duration;
+    problem_->set_stabilization(
+        {progress_.stage_start_time, t1, stage.stabilization, stage.stabilization_end});
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
     const solver::AdvanceResult result = solver::advance(
@@ -351,6 +353,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
           } else {
             detect_contact();
           }
+          record.stabilization_force = problem_->stabilization_force();
           record.zones = static_cast<int>(contact_.zones.size());
           record.contact_elements = static_cast<int>(contact_.elements.size());
           for (int c = 0; c < conditions_.size(); ++c)
