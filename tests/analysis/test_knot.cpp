@@ -547,6 +547,22 @@ TEST(BeamCentreline, NodesOfOneBeamInOrder) {
   EXPECT_NEAR(min_self_distance(ca.points, ca.arc_length, 5.0).distance, 5.0, 1e-12);  // straight
   EXPECT_THROW(beam_centreline(m, Eigen::VectorXd::Zero(5), 0), std::invalid_argument);
   EXPECT_THROW(beam_centreline(m, x, 2), std::out_of_range);
+  EXPECT_THROW(beam_centreline(m, x, 0, 0), std::invalid_argument);
+
+  // Subdivided: the quadratic interpolation of each element. Nodes on the parabola y = s^2 / 20, z = 0
+  // along beam a (x = s): every interpolated point lies on it too, since the interpolation is exact for
+  // quadratics, at arc lengths 20 / (4 * 5) apart.
+  for (int i = 0; i < m.beam(0).num_nodes(); ++i) {
+    const double s = m.beam(0).abscissa(i);
+    x.segment<3>(model::kDofsPerNode * m.beam(0).node(i)) = Vec3(s, s * s / 20.0, 0.0);
+  }
+  const Centreline fine = beam_centreline(m, x, 0, 5);
+  ASSERT_EQ(fine.points.size(), 21u);
+  for (std::size_t k = 0; k < fine.points.size(); ++k) {
+    const double s = 1.0 * static_cast<double>(k);
+    EXPECT_NEAR(fine.arc_length[k], s, 1e-12);
+    EXPECT_NEAR((fine.points[k] - Vec3(s, s * s / 20.0, 0.0)).norm(), 0.0, 1e-12) << k;
+  }
 }
 
 }  // namespace

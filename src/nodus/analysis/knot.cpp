@@ -1,5 +1,7 @@
 #include "nodus/analysis/knot.hpp"
 
+#include "nodus/beam/shape_functions.hpp"
+
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -537,16 +539,26 @@ SelfDistance min_self_distance(const std::vector<Eigen::Vector3d>& curve,
   return best;
 }
 
-Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& state, int beam) {
+Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& state, int beam,
+                           int segments_per_element) {
   if (state.size() != model.num_dofs())
     throw std::invalid_argument("beam_centreline: state size differs from the model's number of unknowns");
+  if (segments_per_element < 1) throw std::invalid_argument("beam_centreline: segments_per_element < 1");
   const beam::Beam& b = model.beam(beam);
+  const auto node = [&](int i) -> Eigen::Vector3d {
+    return state.segment<3>(model::kDofsPerNode * b.node(i));
+  };
   Centreline out;
-  out.points.reserve(static_cast<std::size_t>(b.num_nodes()));
-  out.arc_length.reserve(static_cast<std::size_t>(b.num_nodes()));
-  for (int i = 0; i < b.num_nodes(); ++i) {
-    out.points.push_back(state.segment<3>(model::kDofsPerNode * b.node(i)));
-    out.arc_length.push_back(b.abscissa(i));
+  out.points.push_back(node(0));
+  out.arc_length.push_back(b.abscissa(0));
+  for (int e = 0; e < b.num_elements(); ++e) {
+    const Eigen::Vector3d r0 = node(2 * e), r1 = node(2 * e + 1), r2 = node(2 * e + 2);
+    for (int k = 1; k <= segments_per_element; ++k) {
+      const double u = static_cast<double>(k) / segments_per_element;  // fraction of the element
+      const beam::QuadraticShape n = beam::quadratic_shape(2.0 * u - 1.0);
+      out.points.push_back(n.value[0] * r0 + n.value[1] * r1 + n.value[2] * r2);
+      out.arc_length.push_back(b.abscissa(2 * e) + u * b.element_length());
+    }
   }
   return out;
 }

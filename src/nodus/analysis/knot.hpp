@@ -87,9 +87,14 @@ struct Centreline {
   std::vector<double> arc_length;       ///< reference arc length of each node [mm]
 };
 
-/// The centreline of beam `beam` of `model` in `state` (nine values per node, model/model.hpp): its 2 n + 1
-/// nodes, element end and middle nodes alike. Throws std::invalid_argument if state.size() differs from
-/// model.num_dofs(), std::out_of_range for a beam index out of range.
-Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& state, int beam);
+/// The centreline of beam `beam` of `model` in `state` (nine values per node, model/model.hpp) as a polyline:
+/// with `segments_per_element` = 2 (the default) its 2 n + 1 nodes, element end and middle nodes alike;
+/// with more, also points of the quadratic interpolation of each element at equal steps of its reference
+/// abscissa, so that the polyline follows the curved axis (the chord between two nodes of an element
+/// curved to 1 / kappa departs from it by kappa h^2 / 32, 6 um for h = 0.2 mm at kappa = 5 / mm). Throws
+/// std::invalid_argument if state.size() differs from model.num_dofs() or segments_per_element < 1,
+/// std::out_of_range for a beam index out of range.
+Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& state, int beam,
+                           int segments_per_element = 2);
 
 }  // namespace nodus::analysis

@@ -1,0 +1,147 @@
+#!/usr/bin/env python3
+"""Writes the loading program of the overhand-knot example (examples/overhand_knot_forming.yaml).
+
+The rod ends are moved along paths given by a few waypoints (position and axis direction of the end
+section). Between waypoints the position is interpolated linearly and the axis direction along the great
+circle; the section is carried along the path by parallel transport (no twist is added about the axis).
+nodus interpolates a motion's rotation vector component-wise between keyframes, so the path is written as
+many close keyframes (8 per waypoint interval), each rotation vector chosen among its equivalents (the
+angle plus a multiple of 360 degrees) as the one closest to the previous keyframe.
+
+Usage: scripts/knot_program.py [--elements N] > SCENARIO.yaml
+Requires python3-numpy (Debian).
+"""
+
+import argparse
+
+import numpy as np
+
+SUBSTEPS = 8  # keyframes per waypoint interval
+
+
+def rotation_between(a, b):
+    """The smallest rotation taking the unit vector a onto the unit vector b."""
+    v = np.cross(a, b)
+    c = float(a @ b)
+    if np.linalg.norm(v) < 1e-12:
+        if c > 0:
+            return np.eye(3)
+        raise ValueError("waypoint axes turn by 180 degrees in one interval")
+    k = np.array([[0, -v[2], v[1]], [v[2], 0, -v[0]], [-v[1], v[0], 0]])
+    return np.eye(3) + k + k @ k / (1 + c)
+
+
+def rotation_vector(r, previous):
+    """log(r), among log(r) + 2 pi k n the one closest to `previous` (radians)."""
+    angle = np.arccos(np.clip((np.trace(r) - 1) / 2, -1, 1))
+    if angle < 1e-12:
+        v = np.zeros(3)
+    elif np.pi - angle < 1e-6:
+        m = (r + np.eye(3)) / 2
+        i = int(np.argmax(np.diag(m)))
+        v = m[:, i] / np.sqrt(m[i, i]) * angle
+    else:
+        v = np.array([r[2, 1] - r[1, 2], r[0, 2] - r[2, 0], r[1, 0] - r[0, 1]]) / (2 * np.sin(angle)) * angle
+    if previous is None or np.linalg.norm(v) < 1e-12:
+        return v
+    n = v / np.linalg.norm(v)
+    return min((v + 2 * np.pi * k * n for k in range(-3, 4)), key=lambda c: np.linalg.norm(c - previous))
+
+
+def slerp(a, b, u):
+    angle = np.arccos(np.clip(a @ b, -1, 1))
+    if angle < 1e-12:
+        return a
+    return (np.sin((1 - u) * angle) * a + np.sin(u * angle) * b) / np.sin(angle)
+
+
+class End:
+    """One rod end driven by a motion condition: its reference position and its path so far."""
+
+    def __init__(self, name, position):
+        self.name = name
+        self.reference = np.asarray(position, float)
+        self.position = self.reference.copy()
+        self.axis = np.array([1.0, 0.0, 0.0])
+        self.rotation = np.eye(3)
+        self.vector = None
+
+    def move(self, waypoints):
+        """YAML motion target through `waypoints` = [(at, position, axis), ...] of one stage."""
+        lines = [f"      {self.name}:", "        keyframes:"]
+        at0 = 0.0
+        for at, position, axis in waypoints:
+            position = np.asarray(position, float)
+            axis = np.asarray(axis, float) / np.linalg.norm(axis)
+            start, start_axis = self.position, self.axis
+            for k in range(1, SUBSTEPS + 1):
+                u = k / SUBSTEPS
+                p = (1 - u) * start + u * position
+                t = slerp(start_axis, axis, u)
+                self.rotation = rotation_between(self.axis, t) @ self.rotation
+                self.axis = t
+                self.vector = rotation_vector(self.rotation, self.vector)
+                lines.append(f"          - {{at: {at0 + u * (at - at0):.6g}, translation: {vec(p - self.reference)}, "
+                             f"rotation: {vec(np.degrees(self.vector))}}}")
+            self.position = position
+            at0 = at
+        return "\n".join(lines)
+
+
+def vec(v):
+    return "[" + ", ".join(f"{x:.6g}" for x in v) + "]"
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--elements", type=int, default=300, help="quadratic elements along the rod")
+    args = parser.parse_args()
+
+    a = End("end_a", [-10, 0, 0])
+    b = End("end_b", [10, 0, 0])
+    p = 3.9  # the ends of the loop sit at (-p, -p) and (p, -p)
+    diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2)
+    feed = 3.0  # end A pushes this much rod towards the knot while end B threads the loop
+    loop = [a.move([(1.0, [-p, -p, 0], [1, 1, 0])]),
+            b.move([(0.3, [p + 2, 1, 0], [0, 1, 0]), (0.6, [0, 3.5, 0.1], [-1, 0, 0]),
+                    (0.8, [-1.5, 1, 0.25], [0, -1, 0]), (1.0, [p, -p, 0.35], [1, -1, 0])])]
+    thread = [a.move([(1.0, np.array([-p, -p, 0]) + feed * diagonal, [1, 1, 0])]),
+              b.move([(0.15, [4.7, -4.5, -0.3], [0.3, -0.3, -1]), (0.3, [4.2, -3.6, -0.8], [-0.6, 1, -0.2]),
+                      (0.5, [3.2, -1.3, -0.8], [-0.2, 1, 0.3]), (0.65, [3.1, -1.0, 0.6], [0.3, 0.2, 1]),
+                      (0.8, [4.5, -1.0, 0.8], [1, 0, 0]), (1.0, [6, -1, 0.5], [1, 0, 0])])]
+    print(f"""# The overhand knot of Durville (2012), Sect. 7.2, formed from a straight rod (Table 1: 20 mm, radius 0.1 mm,
+# E = 4000 MPa, nu = 0.3, bending stiffness x 0.3) by moving its two ends.
+# Generated by scripts/knot_program.py --elements {args.elements}; edit that script, not this file.
+#  loop:   end B is carried round and over the rod, making a loop with one crossing (end A turns by 45 deg);
+#  thread: end B dives under the loop, comes up through it and leaves over its far side, while end A feeds
+#          rod into the loop. The rod is stabilised (stages[].stabilization: a viscous drag) so that it
+#          follows its end like a thread pulled by a needle instead of snapping through.
+# The final curve is an overhand knot (a trefoil once its tails are joined far away).
+units: {{length: mm, force: N, stress: MPa, time: s}}
+materials:
+  - {{name: nylon, young_modulus: 4000, poisson_ratio: 0.3}}
+beams:
+  - {{name: rod, material: nylon, radius: 0.1, length: 20, elements: {args.elements}, start: [-10, 0, 0],
+     direction: [1, 0, 0], director1: [0, 1, 0], bending_factor: 0.3}}
+conditions:
+  - {{name: end_a, type: motion, beam: rod, at: start}}
+  - {{name: end_b, type: motion, beam: rod, at: end}}
+stages:
+  - name: loop
+    steps: 60
+    motions:
+{chr(10).join(loop)}
+  - name: thread
+    steps: 100
+    stabilization: 0.01
+    motions:
+{chr(10).join(thread)}
+contact:
+  friction: 0.3
+  max_detections: 2
+solver: {{max_newton_iterations: 40, easy_iterations: 10}}
+output: {{vtk_every: 10}}""")
+
+
+if __name__ == "__main__":
+    main()
