@@ -6,6 +6,8 @@
 
 #include <gtest/gtest.h>
 
+#include "cli_test_support.hpp"
+
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -22,32 +24,10 @@ namespace {
 
 namespace fs = std::filesystem;
 
-struct Result {
-  int status;
-  std::string err;
-};
-
-fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("nodus_resume_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
-}
-
-Result run_nodus(const std::string& args) {
-  const fs::path err = scratch() / "stderr.txt";
-  const std::string cmd = std::string(NODUS_BINARY) + " " + args + " 2> " + err.string() + " > /dev/null";
-  const int raw = std::system(cmd.c_str());
-  std::ifstream in(err);
-  std::stringstream text;
-  text << in.rdbuf();
-  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
-}
-
-fs::path write(const std::string& name, const std::string& text) {
-  const fs::path p = scratch() / name;
-  std::ofstream(p) << text;
-  return p;
-}
+using nodus::testing::Result;
+using nodus::testing::run_nodus;
+using nodus::testing::scratch;
+using nodus::testing::write;
 
 std::string read(const fs::path& path) {
   std::ifstream in(path, std::ios::binary);

@@ -11,6 +11,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "step_recorder.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -38,20 +39,10 @@ stages:
     stabilization_end: 0
 )";
 
-class Recorder : public simulation::StepObserver {
- public:
-  std::vector<simulation::StepRecord> records;
-  std::vector<Eigen::VectorXd> states;
-  void on_step(const simulation::Simulation& sim, const simulation::StepRecord& r) override {
-    records.push_back(r);
-    states.push_back(sim.state());
-  }
-};
-
 TEST(Stabilization, DraggedCantileverCarriesTheDragAndRelaxesWhenItVanishes) {
   const scenario::Scenario scenario = scenario::parse_scenario(kScenario, "drag.yaml");
   simulation::Simulation sim(scenario);
-  Recorder recorder;
+  StepRecorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   const beam::Beam& rod = sim.model().beam(0);
   const int tip = rod.node(rod.num_nodes() - 1);

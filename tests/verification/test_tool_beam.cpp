@@ -11,6 +11,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "step_recorder.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -48,19 +49,9 @@ stages:
 contact: {self_contact: false}
 )";
 
-class Recorder : public simulation::StepObserver {
- public:
-  std::vector<simulation::StepRecord> records;
-  std::vector<Eigen::VectorXd> states;
-  void on_step(const simulation::Simulation& sim, const simulation::StepRecord& r) override {
-    records.push_back(r);
-    states.push_back(sim.state());
-  }
-};
-
 TEST(ToolBeam, PressesTurnsAndIsRemoved) {
   simulation::Simulation sim(scenario::parse_scenario(kScenario, "tool.yaml"));
-  Recorder recorder;
+  StepRecorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   ASSERT_EQ(recorder.records.size(), 9u);
   const double inertia = std::numbers::pi * std::pow(kRadius, 4) / 4.0;
