@@ -119,34 +119,23 @@ void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   }
 }
 
-void Conditions::release(int c, double time, const Eigen::VectorXd& x, const NodeVector& reaction,
-                         double end_time) {
+void Conditions::release(int c, double time, const NodeVector& reaction, double end_time) {
   Item& item = at(c);
   if (item.rigid) throw std::logic_error("release of the rigid condition '" + item.name + "'");
   if (item.active && item.kind == ConditionKind::motion) {
-    // Split the support's generalised force into a force on the centre, a moment about the fixed axis of its
-    // present value (acting as a moment load does), and what remains on the directors (their stretching
-    // part).
+    // The support's generalised force on the unknowns it held (the force on the centre, and on the
+    // directors the forces whose moment is the support's moment) acts on as a dead load that decreases to
+    // zero. A moment about a fixed axis (as a moment load acts) is not used here: its angle is measured with
+    // one director, and a freed section that turns that director towards the axis (a knot's tail) makes it
+    // singular; the stiffness m H of the vanishing moment then disappears abruptly at the end of the ramp.
     NodeVector f = NodeVector::Zero();
     for (int d = 0; d < kNodeDofs; ++d)
       if (item.mask[static_cast<std::size_t>(d)]) f[d] = reaction[d];
-    const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.nodes.front());
-    const Vec3 moment =
-        state.segment<3>(3).cross(f.segment<3>(3)) + state.segment<3>(6).cross(f.segment<3>(6));
     NodeVector rest = f;
     rest.segment<3>(0).setZero();
-    double magnitude = 0.0;
-    if (moment.norm() > 0.0) {
-      item.axis = moment.normalized();
-      anchor_moment(item, state);
-      magnitude = moment.norm();
-      const int v = 3 + 3 * item.director;
-      rest.segment<3>(v) -= magnitude * item.angle->gradient(state.segment<3>(v));
-    }
     item.force.reset(time, f.segment<3>(0));
     item.force.add(end_time, Vec3::Zero());
-    item.moment.reset(time, magnitude);
-    item.moment.add(end_time, 0.0);
+    item.moment.reset(time, 0.0);
     item.director_force.reset(time, rest);
     item.director_force.add(end_time, NodeVector::Zero());
   }

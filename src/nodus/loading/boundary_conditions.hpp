@@ -82,10 +82,9 @@ class Conditions {
   /// Switches condition c off. A motion's support is not removed at once: it is replaced by the load it
   /// exerts at `time` in state x (`reaction`: the nine out-of-balance forces f_int - f_ext at its node),
   /// which then decreases linearly to zero at `end_time`, so that the release is quasi-static and controlled
-  /// by the stage's steps. That load is a dead force on the centre, a moment about the fixed axis of the
-  /// reaction moment (as a load condition's moment), and dead forces on the directors for the rest. A load
-  /// simply stops.
-  void release(int c, double time, const Eigen::VectorXd& x, const NodeVector& reaction, double end_time);
+  /// by the stage's steps. That load is dead: a force on the centre and forces on the directors (whose
+  /// moment is the support's moment at `time`). A load simply stops.
+  void release(int c, double time, const NodeVector& reaction, double end_time);
 
   /// Adds a keyframe of a motion: translation [mm] and rotation vector [rad], cumulative since activation.
   void add_motion_keyframe(int c, double time, const Vec3& translation, const Vec3& rotation);

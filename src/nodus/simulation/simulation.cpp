@@ -279,7 +279,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
         problem_->restore();  // evaluate the support forces at the committed state
         problem_->evaluate(residual, false);
         for (int c : stage.release)
-          conditions_.release(c, t0, problem_->committed_state(),
+          conditions_.release(c, t0,
                               problem_->full_residual().segment<model::kDofsPerNode>(model::kDofsPerNode *
                                                                                      conditions_.node(c)),
                               t1);
