@@ -539,6 +539,58 @@ TEST(ContactResponse, FrictionTangentIsTheDerivativeWithFrozenReaction) {
   EXPECT_EQ(compared, 2 * 2 * 2 * kPairDofs * kPairDofs);
 }
 
+/// Facing particles (ResponseOptions::facing_particles) with the friction force's dependence on R_N
+/// (friction_normal_coupling): the tangent is the exact derivative of the force, the particles moving along
+/// their borders with the directors. The committed state is the current one (du = 0), so that the friction
+/// increment does not depend on where the particles sit.
+TEST(ContactResponse, FacingParticlesTangentIsTheDerivativeOfTheForce) {
+  std::mt19937 rng(46);
+  int compared = 0;
+  const ResponseOptions options{true, true};
+  for (const double gap : kGaps) {
+    for (int regime = 0; regime < 3; ++regime) {  // frictionless, stick, slip
+      Pair p = random_pair(rng, gap, 0.0);
+      // Particles at the facing points of the current sections, then J moved along n to the gap wanted.
+      const auto face = [](Particle& particle, const ElementVector& q, const Vec3& direction) {
+        const std::array<double, 3> n = lagrange(particle.local);
+        Vec3 g1 = Vec3::Zero(), g2 = Vec3::Zero();
+        for (int k = 0; k < kElementNodes; ++k) {
+          g1 += n[static_cast<std::size_t>(k)] * q.segment<3>(kNodeDofs * k + 3);
+          g2 += n[static_cast<std::size_t>(k)] * q.segment<3>(kNodeDofs * k + 6);
+        }
+        ASSERT_TRUE(facing_point(g1, g2, direction, particle.transverse.norm(), particle.transverse));
+      };
+      face(p.e.particle_i, p.q_i, p.e.normal);
+      face(p.e.particle_j, p.q_j, -p.e.normal);
+      const double shift = gap - p.e.normal.dot(particle_position(p.e.particle_j, p.q_j) -
+                                                particle_position(p.e.particle_i, p.q_i));
+      for (int k = 0; k < 3; ++k) p.q_j.segment<3>(9 * k) += shift * p.e.normal;
+      p.qc_i = p.q_i;
+      p.qc_j = p.q_j;
+      const PairVector q = p.q();
+      p.reversible_committed = 0.001 * tangential_projector(p.e.normal) * random_unit(rng);
+      const double size = p.reversible_committed.norm();
+      const FrictionLaw law{kMu, regime == 1 ? 2.0 * size : size / 3.0};
+      const FrictionLaw* friction = regime == 0 ? nullptr : &law;
+      const auto response = [&](const PairVector& x) {
+        return contact_response(p.e, x.head<kElementDofs>(), x.tail<kElementDofs>(), p.qc_i, p.qc_j,
+                                normal_law(), friction, p.reversible_committed, options);
+      };
+      const ContactResponse r = response(q);
+      EXPECT_NEAR(r.gap, gap, 1e-12);
+      // At the facing points the force is that of fixed particles there.
+      const ContactResponse fixed = evaluate(p, q, friction);
+      EXPECT_LT((r.force - fixed.force).cwiseAbs().maxCoeff(), 1e-12 * fixed.force.cwiseAbs().maxCoeff());
+      if (friction) {
+        EXPECT_EQ(r.friction.slip, regime == 2);
+      }
+      const PairMatrix fd = finite_difference(q, [&](const PairVector& x) { return response(x).force; });
+      compared += expect_matrix_near(r.tangent, fd, 1e-6, "facing particles");
+    }
+  }
+  EXPECT_EQ(compared, 2 * 3 * kPairDofs * kPairDofs);
+}
+
 TEST(ContactResponse, RigidTranslationDoesNoWork) {
   std::mt19937 rng(45);
   int compared = 0;

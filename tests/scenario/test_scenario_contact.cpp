@@ -73,6 +73,7 @@ void expect_mechanics_defaults(const ContactSettings& contact) {
   EXPECT_EQ(contact.regularization, 0.0);
   EXPECT_EQ(contact.friction, 0.0);
   EXPECT_EQ(contact.max_reversible_slip, 0.0);
+  EXPECT_FALSE(contact.facing_particles);  // the paper's fixed particles
   EXPECT_EQ(contact.max_detections, 4);
   EXPECT_EQ(contact.max_normal_iterations, 6);
   EXPECT_EQ(contact.normal_tolerance, 1e-3);
@@ -116,6 +117,7 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   regularization: 0.0005
   friction: 0.3
   max_reversible_slip: 0.002
+  particles: facing
   max_detections: 2
   max_normal_iterations: 10
   normal_tolerance: 1e-4
@@ -135,6 +137,7 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   EXPECT_DOUBLE_EQ(contact.regularization, 0.0005);
   EXPECT_DOUBLE_EQ(contact.friction, 0.3);
   EXPECT_DOUBLE_EQ(contact.max_reversible_slip, 0.002);
+  EXPECT_TRUE(contact.facing_particles);
   EXPECT_EQ(contact.max_detections, 2);
   EXPECT_EQ(contact.max_normal_iterations, 10);
   EXPECT_DOUBLE_EQ(contact.normal_tolerance, 1e-4);
@@ -274,6 +277,8 @@ TEST(ScenarioContactErrors, NonPositivePenaltyAndMechanicsLengths) {
             "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got -0.002");
   EXPECT_EQ(error_of("contact:\n  max_penetration: 0\n"),
             "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got 0");
+  EXPECT_EQ(error_of("contact:\n  particles: moving\n"),
+            "knot.yaml:26: contact.particles: expected one of fixed | facing, got moving");
   EXPECT_EQ(error_of("contact:\n  regularization: -1e-4\n"),
             "knot.yaml:26: contact.regularization: expected a number > 0 or auto (mm), got -1e-4");
   EXPECT_EQ(error_of("contact:\n  beams: [rod]\n  max_reversible_slip: 0\n"),
@@ -365,8 +370,8 @@ TEST(ScenarioContactErrors, UnknownKey) {
   const std::string keys =
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
       "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
-      "regularization | friction | max_reversible_slip | max_detections | max_normal_iterations | "
-      "normal_tolerance";
+      "regularization | friction | max_reversible_slip | particles | max_detections | "
+      "max_normal_iterations | normal_tolerance";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
   EXPECT_EQ(error_of("contact: {coulomb: 0.2}\n"),
@@ -437,15 +442,16 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  regularization: auto  # mm\n"
                        "  friction: 0\n"
                        "  max_reversible_slip: auto  # mm\n"
+                       "  particles: fixed\n"
                        "  max_detections: 4\n"
                        "  max_normal_iterations: 6\n"
                        "  normal_tolerance: 0.001  # rad\n"))
       << text;
 
-  const std::string given = describe(parse(
-      "contact:\n  forces: false\n  penalty: 250\n  max_penetration: 0.004\n  regularization: 0.0005\n"
-      "  friction: 0.3\n  max_reversible_slip: 0.002\n  max_detections: 2\n  max_normal_iterations: 10\n"
-      "  normal_tolerance: 1e-4\n"));
+  const std::string given = describe(
+      parse("contact:\n  forces: false\n  penalty: 250\n  max_penetration: 0.004\n  regularization: 0.0005\n"
+            "  friction: 0.3\n  max_reversible_slip: 0.002\n  particles: facing\n  max_detections: 2\n"
+            "  max_normal_iterations: 10\n  normal_tolerance: 1e-4\n"));
   EXPECT_TRUE(contains(given,
                        "  element_spacing: auto  # mm\n"
                        "  forces: false\n"
@@ -454,6 +460,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  regularization: 0.0005  # mm\n"
                        "  friction: 0.3\n"
                        "  max_reversible_slip: 0.002  # mm\n"
+                       "  particles: facing\n"
                        "  max_detections: 2\n"
                        "  max_normal_iterations: 10\n"
                        "  normal_tolerance: 0.0001  # rad\n"))
@@ -472,8 +479,8 @@ TEST(ScenarioContactDescribe, RoundTrips) {
         "contact:\n  beams: [strand]\n  proximity_distance: 0.5\n  separation_distance: 2.5\n"
         "  test_point_spacing: 0.25\n  matching_length: 0.75\n  element_spacing: 0.125\n",
         "contact:\n  forces: false\n  penalty: 123.456\n  max_penetration: 0.0021\n  regularization: auto\n"
-        "  friction: 0.3\n  max_reversible_slip: 1e-3\n  max_detections: 7\n  max_normal_iterations: 1\n"
-        "  normal_tolerance: 2.5e-4\n",
+        "  friction: 0.3\n  max_reversible_slip: 1e-3\n  particles: facing\n  max_detections: 7\n"
+        "  max_normal_iterations: 1\n  normal_tolerance: 2.5e-4\n",
         "contact: {enabled: false, friction: 0.1, penalty: 1e5, max_penetration: auto}\n"}) {
     const Scenario original = parse(section);
     Scenario again;
@@ -496,6 +503,7 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.regularization, b.regularization) << section;
     EXPECT_EQ(a.friction, b.friction) << section;
     EXPECT_EQ(a.max_reversible_slip, b.max_reversible_slip) << section;
+    EXPECT_EQ(a.facing_particles, b.facing_particles) << section;
     EXPECT_EQ(a.max_detections, b.max_detections) << section;
     EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;
     EXPECT_EQ(a.normal_tolerance, b.normal_tolerance) << section;

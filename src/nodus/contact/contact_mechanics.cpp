@@ -52,12 +52,67 @@ ParticleMap particle_map(const Particle& p) {
   return b;
 }
 
+bool facing_point(const Eigen::Vector3d& g1, const Eigen::Vector3d& g2, const Eigen::Vector3d& direction,
+                  double radius, Eigen::Vector2d& xi) {
+  const Eigen::Vector2d w(g1.dot(direction), g2.dot(direction));
+  const double size = w.norm();
+  if (!(size > 0.0)) return false;
+  xi = (radius / size) * w;
+  return true;
+}
+
+namespace {
+
+/// A particle of `e` moved to the facing point of its section (towards `direction`), and the curvature of
+/// the facing point's support function h(G) = R |G^T direction| (G = [g1 g2] at the particle) in the
+/// section's directors: d2h/dG2 = R / |w| (I - u u^T) (x) direction direction^T, with w = G^T direction, u =
+/// w / |w|; `shape` the particle's shape function values.
+struct Facing {
+  Particle particle;
+  Eigen::Matrix2d curvature = Eigen::Matrix2d::Zero();  ///< R / |w| (I - u u^T)
+  Eigen::Vector3d shape = Eigen::Vector3d::Zero();
+};
+
+Facing facing(const Particle& p, const beam::ElementVector& q, const Eigen::Vector3d& direction) {
+  Facing f;
+  f.particle = p;
+  const beam::QuadraticShape sh = beam::quadratic_shape(p.local);
+  Eigen::Vector3d g1 = Eigen::Vector3d::Zero(), g2 = Eigen::Vector3d::Zero();
+  for (int k = 0; k < beam::kElementNodes; ++k) {
+    const double v = sh.value[static_cast<std::size_t>(k)];
+    f.shape[k] = v;
+    g1 += v * q.segment<3>(beam::kNodeDofs * k + 3);
+    g2 += v * q.segment<3>(beam::kNodeDofs * k + 6);
+  }
+  const double radius = p.transverse.norm();
+  Eigen::Vector2d xi;
+  if (!facing_point(g1, g2, direction, radius, xi)) return f;
+  f.particle.transverse = xi;
+  const Eigen::Vector2d w(g1.dot(direction), g2.dot(direction));
+  const Eigen::Vector2d u = w.normalized();
+  f.curvature = (radius / w.norm()) * (Eigen::Matrix2d::Identity() - u * u.transpose());
+  return f;
+}
+
+}  // namespace
+
 ContactResponse contact_response(const ContactElement& e, const beam::ElementVector& q_i,
                                  const beam::ElementVector& q_j, const beam::ElementVector& q_i_committed,
                                  const beam::ElementVector& q_j_committed, const NormalLaw& normal,
-                                 const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed) {
+                                 const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed,
+                                 const ResponseOptions& options) {
   constexpr int n = beam::kElementDofs;
-  const ParticleMap b_i = particle_map(e.particle_i), b_j = particle_map(e.particle_j);
+  // Facing particles: I's particle is the point of its border furthest along +n, J's along -n. Then the gap
+  // is n.(r_J - r_I) - h_I - h_J with h the support function of the section, and the particles' motion along
+  // the border does not change it to first order (the force is that of fixed particles at the facing points);
+  // the second order adds -R_N d2gap/dq2 = R_N (d2h_I + d2h_J) to the tangent. With fixed particles, a
+  // rotation of a section about its axis carries its particle off the line of the force, whose lever arm then
+  // turns the section further: a torsional stiffness -R R_N per particle, which in a tightened knot outweighs
+  // the rod's torsional stiffness, so that every detection (particles put back facing) twisted the knot back
+  // and forth.
+  const Facing f_i = options.facing_particles ? facing(e.particle_i, q_i, e.normal) : Facing{e.particle_i};
+  const Facing f_j = options.facing_particles ? facing(e.particle_j, q_j, -e.normal) : Facing{e.particle_j};
+  const ParticleMap b_i = particle_map(f_i.particle), b_j = particle_map(f_j.particle);
   // Relative position of the particles, x_J - x_I = C (q_I, q_J) with C = [-B_I, B_J] (Eq. 65-67).
   Eigen::Matrix<double, 3, 2 * n> c;
   c << -b_i, b_j;
@@ -72,11 +127,36 @@ ContactResponse contact_response(const ContactElement& e, const beam::ElementVec
     r.friction = friction_response(*friction, r.normal_reaction, nrm, reversible_committed, du);
     force_on_j += r.friction.force;
     stiffness += r.friction.stiffness;  // R_N held fixed (the paper's simplification, Sect. 5.3)
+    // The friction force is proportional to R_N: d force_on_j / d(x_J - x_I) gains (force / R_N) dR_N/dgap
+    // n^T, so K = -d force_on_j / d(x_J - x_I) gains k_N / R_N force n^T (k_N = -dR_N/dgap). Without it
+    // Newton converges linearly (|R| halved per iteration in a tightened knot) wherever friction is active.
+    if (options.friction_normal_coupling && r.normal_reaction > 0.0)
+      stiffness += (normal_stiffness(normal, r.gap) / r.normal_reaction) * r.friction.force * nrm.transpose();
   }
   // The force on J acts as an external load +force_on_j on J's particle and -force_on_j on I's:
   // f_int - f_ext gains -C^T force_on_j; its derivative is C^T K C with K = -d force_on_j / d(x_J - x_I).
   r.force = -c.transpose() * force_on_j;
   r.tangent = c.transpose() * stiffness * c;
+  if (options.facing_particles && r.normal_reaction > 0.0) {
+    // The force on J's particle, F, acts at the facing points, which move along the borders with the
+    // directors: d(B^T F)/dq through xi adds N_k N_l (d2h)_ab F n^T on each side; for F = R_N n this is the
+    // curvature of the gap above (symmetric). The part of the friction force is not symmetric and goes with
+    // the coupling. (The friction increment's own dependence on where the particle sits, B'(xi) (q -
+    // q_committed), is left out: it is of the order of the step's increment.)
+    const Mat3 nn = options.friction_normal_coupling ? Mat3(force_on_j * nrm.transpose())
+                                                     : Mat3(r.normal_reaction * nrm * nrm.transpose());
+    const auto add = [&](int offset, const Facing& f) {
+      for (int k = 0; k < beam::kElementNodes; ++k)
+        for (int l = 0; l < beam::kElementNodes; ++l)
+          for (int a = 0; a < 2; ++a)
+            for (int b = 0; b < 2; ++b)
+              r.tangent.block<3, 3>(offset + beam::kNodeDofs * k + 3 + 3 * a,
+                                    offset + beam::kNodeDofs * l + 3 + 3 * b) +=
+                  (f.shape[k] * f.shape[l] * f.curvature(a, b)) * nn;
+    };
+    add(0, f_i);
+    add(n, f_j);
+  }
   return r;
 }
 

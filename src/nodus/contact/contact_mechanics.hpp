@@ -65,12 +65,31 @@ struct ContactResponse {
   PairMatrix tangent = PairMatrix::Zero();  ///< its derivative (normal and particles fixed)
 };
 
-/// Evaluates the contact element `e` (particles and normal fixed) for the element unknowns q_i, q_j (current)
+/// How contact_response places the particles and linearises friction.
+struct ResponseOptions {
+  /// Each particle is the point of its section's border that lies furthest along the normal towards the other
+  /// beam, in the current state (the section's abscissa is kept): the normal force then passes through the
+  /// section's axis whatever the rotation of the section. Off: the particles keep the material coordinates
+  /// of the element (the paper's fixed particles).
+  bool facing_particles = false;
+  /// Add to the tangent the derivative of the friction force through R_N (not symmetric: needs an LU solver).
+  /// Off: R_N held fixed in the friction tangent (the paper's simplification, Sect. 5.3).
+  bool friction_normal_coupling = false;
+};
+
+/// Evaluates the contact element `e` (normal fixed) for the element unknowns q_i, q_j (current)
 /// and q_i_committed, q_j_committed (at the committed state, for the friction increment). `friction` may be
 /// null (frictionless). `reversible_committed` is the element's committed g_rev.
 ContactResponse contact_response(const ContactElement& e, const beam::ElementVector& q_i,
                                  const beam::ElementVector& q_j, const beam::ElementVector& q_i_committed,
                                  const beam::ElementVector& q_j_committed, const NormalLaw& normal,
-                                 const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed);
+                                 const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed,
+                                 const ResponseOptions& options = {});
+
+/// The transverse material coordinates (xi1, xi2), of norm `radius`, of the point of the border of the
+/// section with directors g1, g2 that lies furthest along `direction`: xi ~ (g1.direction, g2.direction).
+/// False (xi unchanged) if the direction is along the axis.
+bool facing_point(const Eigen::Vector3d& g1, const Eigen::Vector3d& g2, const Eigen::Vector3d& direction,
+                  double radius, Eigen::Vector2d& xi);
 
 }  // namespace nodus::contact

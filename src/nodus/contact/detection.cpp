@@ -11,6 +11,7 @@
 
 #include "nodus/contact/beam_curve.hpp"
 #include "nodus/contact/broad_phase.hpp"
+#include "nodus/contact/contact_mechanics.hpp"
 
 namespace nodus::contact {
 
@@ -345,6 +346,17 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   const Eigen::Vector3d t_int = 0.5 * ((zone.b - zone.a) * gi0.dr + (zone.d - zone.c) * gj0.dr);  // Eq. 34
   if (!(t_int.norm() > 0.0)) return false;
   if (!cut_axis(curves, bi, x_int, t_int, s_i) || !cut_axis(curves, bj, x_int, t_int, s_j)) return false;
+  // The cut must lie on the part of the axis that the zone pairs. Where an axis runs nearly along the plane
+  // (at the end of a zone, where the strands of a knot part), Newton may land on another crossing of the
+  // plane with the axis, even on the other part of the same beam: a self-contact element pairing a section
+  // with itself (gap -2R, R_N 127 N in the tightened knot). Such an element is not created. Margin: half the
+  // zone's interval on either side.
+  const auto inside = [](double v, double lo, double hi) {
+    if (lo > hi) std::swap(lo, hi);
+    const double margin = 0.5 * (hi - lo);
+    return v >= lo - margin && v <= hi + margin;
+  };
+  if (!inside(s_i, zone.a, zone.b) || !inside(s_j, zone.c, zone.d)) return false;
   const SectionGeometry gi = curves.at(bi, s_i), gj = curves.at(bj, s_j);
 
   Eigen::Vector3d d, normal;
@@ -440,12 +452,16 @@ bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, con
   return make_element(BeamCurves(model, x), zone, zeta, out);
 }
 
-bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e) {
+bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e, bool facing) {
   const BeamCurves curves(model, x);
   const SectionGeometry gi = curves.at_element(e.particle_i.element, e.particle_i.local);
   const SectionGeometry gj = curves.at_element(e.particle_j.element, e.particle_j.local);
   Eigen::Vector3d d;
   if (!section_normal(gi, gj, curves.length(e.particle_i.beam), d, e.normal, e.parallel_weight)) return false;
+  if (facing) {
+    facing_point(gi.g1, gi.g2, e.normal, curves.radius(e.particle_i.beam), e.particle_i.transverse);
+    facing_point(gj.g1, gj.g2, -e.normal, curves.radius(e.particle_j.beam), e.particle_j.transverse);
+  }
   const Eigen::Vector2d& a = e.particle_i.transverse;
   const Eigen::Vector2d& b = e.particle_j.transverse;
   e.position_i = gi.r + a.x() * gi.g1 + a.y() * gi.g2;

@@ -99,6 +99,9 @@ bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, con
 
 /// Recomputes, in state `x`, the normal of contact element `e` for its particles as they are (Eq. 41-44; the
 /// fixed point on normal directions of Sect. 6), with its positions and gap. False if it is undefined.
-bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e);
+/// With `facing`, the particles are first moved, at their abscissas, to the points of their sections' borders
+/// that face each other along the new normal (as contact_response places them with facing_particles).
+bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e,
+                   bool facing = false);
 
 }  // namespace nodus::contact

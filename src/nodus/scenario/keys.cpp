@@ -180,6 +180,11 @@ constexpr std::array kKeys{
   KeyDoc{"contact.max_reversible_slip", "number", "mm", "auto", "> 0 or auto",
          "g_rev_max, the tangential displacement taken reversibly before sliding (regularised Coulomb law). "
          "auto: max_penetration / 2"},
+  KeyDoc{"contact.particles", "choice", "", "fixed", "fixed | facing",
+         "where the contact forces act during Newton. fixed: the paper's particles, material points of the "
+         "section borders placed at detection (Eq. 37-40). facing: at each evaluation, the points of the "
+         "borders that face each other along the normal (no spurious torsional stiffness from the lever arm "
+         "of a turned section; for tightened knots)"},
   KeyDoc{"contact.max_detections", "integer", "", "4", ">= 1",
          "loop 2 of the global algorithm (Sect. 6): at most this many detections of the contact elements "
          "per load step"},

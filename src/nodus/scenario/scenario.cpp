@@ -965,6 +965,7 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
     contact.friction = reader.number(*value, [](double v) { return v >= 0.0; });
   }
   length("max_reversible_slip", contact.max_reversible_slip);
+  if (const auto value = map.get("particles")) contact.facing_particles = reader.choice(*value) == "facing";
   const auto at_least_one = [](int v) { return v >= 1; };
   if (const auto value = map.get("max_detections")) {
     contact.max_detections = reader.integer(*value, at_least_one);
@@ -1260,6 +1261,7 @@ std::string describe(const Scenario& scenario) {
   or_auto("regularization", contact.regularization, "mm");
   line(fmt::format("  friction: {}", format_number(contact.friction)));
   or_auto("max_reversible_slip", contact.max_reversible_slip, "mm");
+  line(fmt::format("  particles: {}", contact.facing_particles ? "facing" : "fixed"));
   line(fmt::format("  max_detections: {}", contact.max_detections));
   line(fmt::format("  max_normal_iterations: {}", contact.max_normal_iterations));
   line(fmt::format("  normal_tolerance: {}  # rad", format_number(contact.normal_tolerance)));

@@ -145,9 +145,12 @@ struct ContactSettings {
   double regularization = 0.0;       ///< p_reg [mm], auto if <= 0
   double friction = 0.0;             ///< mu [-], >= 0
   double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
-  int max_detections = 4;            ///< loop 2: detections of contact elements per step, >= 1
-  int max_normal_iterations = 6;     ///< loop 3: updates of the normals per detection, >= 1
-  double normal_tolerance = 1e-3;    ///< loop 3 stops when no normal turns by more than this [rad], > 0
+  /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
+  /// paper's fixed material particles (fixed).
+  bool facing_particles = false;
+  int max_detections = 4;          ///< loop 2: detections of contact elements per step, >= 1
+  int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
+  double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
 };
 
 /// A run that continues from the state at the end of one stage of Scenario::stages (key `branches`).

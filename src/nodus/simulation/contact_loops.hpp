@@ -24,6 +24,10 @@ struct ContactLawSettings {
   double max_penetration = 0.0;  ///< p_max [mm]
   double regularization = 0.0;   ///< p_reg [mm]
   std::optional<contact::FrictionLaw> friction;
+  /// Linearise friction with R_N varying (a non-symmetric tangent): set when the linear solver is LU.
+  bool friction_normal_coupling = false;
+  /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
+  bool facing_particles = false;
   int max_detections = 4;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]

@@ -75,10 +75,11 @@ void EquilibriumProblem::restore_state(ProblemState state) {
   update_free_set();
 }
 
-void EquilibriumProblem::set_contact_laws(double regularization,
-                                          std::optional<contact::FrictionLaw> friction) {
+void EquilibriumProblem::set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction,
+                                          contact::ResponseOptions options) {
   regularization_ = regularization;
   friction_ = friction;
+  response_options_ = options;
 }
 
 void EquilibriumProblem::add_contact(solver::SparseAssembler* assembler) {
@@ -89,7 +90,8 @@ void EquilibriumProblem::add_contact(solver::SparseAssembler* assembler) {
     const contact::NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
     const contact::ContactResponse r = contact::contact_response(
         e, model_.gather(x_, ei), model_.gather(x_, ej), model_.gather(x_committed_, ei),
-        model_.gather(x_committed_, ej), law, friction_ ? &*friction_ : nullptr, reversible_committed_[k]);
+        model_.gather(x_committed_, ej), law, friction_ ? &*friction_ : nullptr, reversible_committed_[k],
+        response_options_);
     contact_states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
     const std::vector<int>& ni = element_nodes_[static_cast<std::size_t>(ei)];
     const std::vector<int>& nj = element_nodes_[static_cast<std::size_t>(ej)];

@@ -98,7 +98,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   void set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
                    std::vector<Eigen::Vector3d> reversible);
   /// The laws: p_reg of the normal law, and friction (null: none).
-  void set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction);
+  /// `options`: where the particles sit, and the friction tangent with R_N varying (not symmetric; for an LU
+  /// solver).
+  void set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction,
+                        contact::ResponseOptions options = {});
   contact::ContactGeometry& contact_geometry() { return contact_; }
   const contact::ContactGeometry& contact_geometry() const { return contact_; }
   std::vector<double>& zone_penalty() { return penalty_; }
@@ -128,6 +131,7 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   std::vector<ContactState> contact_states_;
   double regularization_ = 0.0;
   std::optional<contact::FrictionLaw> friction_;
+  contact::ResponseOptions response_options_;
 
   Stabilization stabilization_;
   double stabilization_force_ = 0.0;

@@ -71,8 +71,12 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
     ++result.steps;
     state.previous = start;
     state.previous_step = converged_step;
-    if (report.iterations <= control.easy_iterations)
-      step = std::min(control.nominal_step, step * control.growth);
+    // A step is easy when its hardest Newton solve was: the contact loops solve a step several times (loop 3
+    // after each update of the normals, loop 2 after each detection), and their sum counts the updates, not
+    // how hard the increment was. With the sum, a knot step (20 to 70 iterations over 4 solves) never counted
+    // as easy, and the step never grew back after a cutback.
+    const int hardest = report.longest_solve > 0 ? report.longest_solve : report.iterations;
+    if (hardest <= control.easy_iterations) step = std::min(control.nominal_step, step * control.growth);
     const int step_cutbacks = cutbacks;
     cutbacks = 0;
     if (!on_step({t, converged_step, step_cutbacks, report})) {

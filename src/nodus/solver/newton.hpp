@@ -19,6 +19,9 @@ struct NewtonSettings {
 struct NewtonReport {
   bool converged = false;
   int iterations = 0;
+  /// The iterations of the longest single Newton solve among `iterations`: a step solved by several Newton
+  /// solves (the contact loops) sums them in `iterations`. 0: the same as `iterations`.
+  int longest_solve = 0;
   double residual = 0.0;   ///< |R| at the end [residual units]
   double increment = 0.0;  ///< scaled size of the last increment
   std::string failure;     ///< why it did not converge
