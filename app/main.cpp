@@ -26,6 +26,7 @@
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/logging.hpp"
 #include "nodus/output/progress_reporter.hpp"
+#include "nodus/output/stage_end_writer.hpp"
 #include "nodus/output/steps_csv_writer.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/output/vtk_writer.hpp"
@@ -56,11 +57,12 @@ class RunOutputs {
         vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
         final_nodes_(dir),
         contact_tables_(dir),
+        stage_ends_(dir),
         summary_(dir, write_summary),
         checkpoints_(dir, scenario.output.checkpoint_every),
         progress_(scenario.output.progress_seconds) {
     // The checkpoint comes after the files of its step, so that they are complete up to it.
-    observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &summary_, &checkpoints_};
+    observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
     if (!quiet) observers_.push_back(&progress_);
   }
   const std::vector<nodus::simulation::StepObserver*>& observers() const { return observers_; }
@@ -71,6 +73,7 @@ class RunOutputs {
   nodus::output::VtkSeriesWriter vtk_;
   nodus::output::FinalNodesWriter final_nodes_;
   nodus::output::ContactCsvWriter contact_tables_;
+  nodus::output::StageEndWriter stage_ends_;
   nodus::output::SummaryWriter summary_;
   nodus::output::CheckpointWriter checkpoints_;
   nodus::output::ProgressReporter progress_;
