@@ -73,8 +73,9 @@ constexpr std::array kKeys{
   KeyDoc{"stages[].steps", "integer", "", "required", ">= 1", "number of nominal load steps"},
   KeyDoc{"stages[].duration", "number", "s", "1", "> 0", "length of the stage in load time"},
   KeyDoc{"stages[].stabilization", "number", "N s/mm^2", "0", ">= 0",
-         "viscous drag per unit length on the beam axes during the stage, force = -value * (velocity in load "
-         "time); a numerical aid to pass snap-throughs, off (0) where results are read (docs/model.md)"},
+         "viscous drag per unit length on the beams during the stage, force = -value * (velocity in load "
+         "time) on the axis and value * R^2/4 on each director; a numerical aid to pass snap-throughs, off (0) "
+         "or vanished (the beams at rest) where results are read (docs/model.md)"},
   KeyDoc{"stages[].stabilization_end", "number", "N s/mm^2", "stabilization", ">= 0",
          "the drag at the stage end, reached geometrically from stabilization; 0: decays to 1e-6 of it and is "
          "exactly 0 at the stage end"},

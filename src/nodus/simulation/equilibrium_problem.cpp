@@ -34,13 +34,20 @@ EquilibriumProblem::EquilibriumProblem(const model::Model& model, loading::Condi
   element_nodes_ = model_.element_nodes();
   // Each quadratic element of length h gives h/6, 2h/3, h/6 to its nodes (Simpson's rule): the weights of a
   // beam add up to its length.
-  node_length_.assign(static_cast<std::size_t>(model_.num_dofs() / model::kDofsPerNode), 0.0);
+  // The drag on the directors is that of the section's points averaged over the disc: <xi_a xi_b> = R^2/4
+  // delta_ab, so each director takes R^2/4 times the weight of the centre.
+  const auto nodes = static_cast<std::size_t>(model_.num_dofs() / model::kDofsPerNode);
+  node_length_.assign(nodes, 0.0);
+  node_director_length_.assign(nodes, 0.0);
   for (const beam::Beam& b : model_.beams())
     for (int e = 0; e < b.num_elements(); ++e) {
-      const double h = b.element_length();
-      node_length_[static_cast<std::size_t>(b.node(2 * e))] += h / 6.0;
-      node_length_[static_cast<std::size_t>(b.node(2 * e + 1))] += 2.0 * h / 3.0;
-      node_length_[static_cast<std::size_t>(b.node(2 * e + 2))] += h / 6.0;
+      const double h = b.element_length(), spread = 0.25 * b.radius() * b.radius();
+      const double weights[3] = {h / 6.0, 2.0 * h / 3.0, h / 6.0};
+      for (int k = 0; k < 3; ++k) {
+        const auto n = static_cast<std::size_t>(b.node(2 * e + k));
+        node_length_[n] += weights[k];
+        node_director_length_[n] += spread * weights[k];
+      }
     }
   update_free_set();
 }
@@ -157,8 +164,12 @@ void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) 
   double reactions = 0.0;
   for (int i = 0; i < model_.num_dofs(); ++i)
     if (prescribed_[static_cast<std::size_t>(i)]) reactions += residual_full_[i] * residual_full_[i];
+  // Plus the round-off of the stabilising drag: c (x - x_committed) carries an error of c eps |x| per
+  // unknown, which grows as 1/dt when steps are cut back. Without it, a step cut back below 1e-9 of the load
+  // time could never converge (|R| stuck at this floor, doubling with every cutback, under 1e-15 increments).
   residual_tolerance_ =
-      std::max(tolerances_.residual * std::max(f_ext_.norm(), std::sqrt(reactions)), force_floor_);
+      std::max(tolerances_.residual * std::max(f_ext_.norm(), std::sqrt(reactions)), force_floor_) +
+      stabilization_roundoff_;
 }
 
 double Stabilization::at(double t) const {
@@ -170,26 +181,36 @@ double Stabilization::at(double t) const {
 
 void EquilibriumProblem::add_stabilization(solver::SparseAssembler* assembler) {
   stabilization_force_ = 0.0;
+  stabilization_roundoff_ = 0.0;
   const double dt = time_ - time_committed_;
   const double eta = stabilization_.at(time_);
   if (eta <= 0.0 || dt <= 0.0) return;
-  double squared = 0.0;
+  double squared = 0.0, roundoff = 0.0;
+  constexpr double kEps = std::numeric_limits<double>::epsilon();
   Eigen::Matrix<double, model::kDofsPerNode, model::kDofsPerNode> k;
   for (std::size_t n = 0; n < node_length_.size(); ++n) {
-    const double c = eta * node_length_[n] / dt;
+    const double c = eta * node_length_[n] / dt, c_directors = eta * node_director_length_[n] / dt;
     const int i = model::kDofsPerNode * static_cast<int>(n);
     // Prescribed nodes feel the drag too: their supports carry it (a tool dragged through the same medium).
-    const Eigen::Vector3d drag = c * (x_.segment<3>(i) - x_committed_.segment<3>(i));
-    residual_full_.segment<3>(i) += drag;
+    Eigen::Matrix<double, model::kDofsPerNode, 1> weight;
+    weight << Eigen::Vector3d::Constant(c), Eigen::Matrix<double, 6, 1>::Constant(c_directors);
+    const auto drag =
+        (weight.array() *
+         (x_.segment<model::kDofsPerNode>(i) - x_committed_.segment<model::kDofsPerNode>(i)).array())
+            .matrix()
+            .eval();
+    residual_full_.segment<model::kDofsPerNode>(i) += drag;
     squared += drag.squaredNorm();
+    roundoff +=
+        (kEps * weight.array() * x_.segment<model::kDofsPerNode>(i).array().abs()).matrix().squaredNorm();
     if (assembler) {
-      k.setZero();
-      k.topLeftCorner<3, 3>().diagonal().setConstant(c);
+      k = weight.asDiagonal();
       const int block[1] = {static_cast<int>(n)};
       assembler->add(block, k);
     }
   }
   stabilization_force_ = std::sqrt(squared);
+  stabilization_roundoff_ = std::sqrt(roundoff);
 }
 
 double EquilibriumProblem::scaled_increment(const Eigen::VectorXd& du) const {

@@ -135,7 +135,11 @@ class EquilibriumProblem final : public solver::SteppedProblem {
 
   Stabilization stabilization_;
   double stabilization_force_ = 0.0;
+  double stabilization_roundoff_ =
+      0.0;                           ///< round-off of the drag in the residual, sqrt(sum (c eps |x|)^2) [N]
   std::vector<double> node_length_;  ///< per node: its share of the beam length (Simpson weights) [mm]
+  std::vector<double>
+      node_director_length_;  ///< per node: R^2/4 times node_length_ (drag on the directors) [mm^3]
 
   void rebuild_pattern();
   /// Adds the stabilisation drag to residual_full_ and, if `assembler`, its tangent.
