@@ -75,8 +75,11 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
     // after each update of the normals, loop 2 after each detection), and their sum counts the updates, not
     // how hard the increment was. With the sum, a knot step (20 to 70 iterations over 4 solves) never counted
     // as easy, and the step never grew back after a cutback.
+    // Nor does a step that needed cutbacks let the next one grow: it would retry the size that just failed
+    // (in the knot's settle stage every other attempt failed so, 116 cutbacks in 253 steps).
     const int hardest = report.longest_solve > 0 ? report.longest_solve : report.iterations;
-    if (hardest <= control.easy_iterations) step = std::min(control.nominal_step, step * control.growth);
+    if (hardest <= control.easy_iterations && cutbacks == 0)
+      step = std::min(control.nominal_step, step * control.growth);
     const int step_cutbacks = cutbacks;
     cutbacks = 0;
     if (!on_step({t, converged_step, step_cutbacks, report})) {
