@@ -1,0 +1,607 @@
+#!/usr/bin/env python3
+"""Report on an overhand-knot run of nodus (Durville 2012, Sect. 7.2, Figs. 12, 14, 15, 17). Units: mm, N.
+
+Usage: scripts/knot_report.py DIR       (requires python3-numpy and python3-matplotlib, Debian)
+
+Inputs (DIR is a run's output folder):
+  DIR/final_nodes.csv, DIR/contact_final.csv       the tightened state (required)
+  DIR/steps.csv                                     last row: pull force |pull_b_f|, stabilization_force
+  DIR/summary.json                                  optional: `branches` (names, folders, friction)
+  DIR/branches/NAME/{final_nodes,contact_final,steps}.csv   each release branch (friction from
+                                                    summary.json, else parsed from NAME, e.g. mu_0.30)
+  DIR/stages/NNN_STAGE_nodes.csv                    stage-end states, for Fig. 12 (skipped if absent)
+
+Definitions, for each state (the tightened one = the main run's final state, then each branch's final):
+  in contact      elements with normal_force > 0; s_a, s_b the smallest and largest rod arc length s among
+                  their abscissa_i, abscissa_j: the knot occupies [s_a, s_b].
+  abscissa        along the intermediate geometry: within a zone (elements in zeta order) the length of the
+                  polyline of midpoints (x_i + x_j) / 2 from the zone's first element; zones in number order,
+                  each starting where the previous one ends.
+  intermediate length   sum over zones of the abscissa span from the first to the last element in contact.
+  tail angle      angle between the unit chords c(s_a) -> c(s_a - 2) and c(s_b) -> c(s_b + 2) of the
+                  centreline c (linear between nodes, clamped to the rod ends); 180 deg: tails pulled apart.
+  loop            the longest sub-interval of [s_a, s_b] farther than h from every abscissa_i, abscissa_j of
+                  an element in contact, h = half the median spacing of successive abscissa_i in a zone
+                  (spacing at least 0.05 mm); loop_length_mm its length in s, loop_radius_mm the radius of
+                  the circle fitted to its nodes (plane by SVD, then Kasa fit; nan below 5 nodes).
+  max penetration max(-gap) over all elements.
+
+Outputs, in DIR/report/ (each written to a temporary name, then renamed):
+  knot_report.csv                      one row per state: the numbers above (also printed as a table)
+  reactions_tightened.csv, reactions_NAME.csv   per element: zone, zeta, abscissa, s_i, s_j, midpoint,
+                                       normal and tangential reaction, state
+  fig14_tightened_reactions.png        reactions along the intermediate geometry, tightened state
+  fig17_released_reactions.png         the same, one panel per branch (highest friction first)
+  fig12_stages.png                     the rod seen from +z at the end of each stage (and the final state
+                                       if it differs from the last stage end), coloured by z
+  fig15_released_knots.png             each branch's knot seen from +z, nodes with s in [s_a-3, s_b+3]
+"""
+
+import csv
+import json
+import os
+import re
+import sys
+from dataclasses import dataclass
+from pathlib import Path
+
+import numpy as np
+import matplotlib
+
+matplotlib.use("Agg")
+import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
+from matplotlib import cm, colors  # noqa: E402
+
+NODE_COLUMNS = ["s", "x", "y", "z"]  # numeric; also `beam`
+CONTACT_COLUMNS = ["zone", "zeta", "abscissa_i", "abscissa_j", "x_i", "y_i", "z_i", "x_j", "y_j", "z_j",
+                   "gap", "normal_force", "tangential_force"]  # numeric; also `state`
+TAIL_CHORD = 2.0          # mm, length along each tail of the chord giving its direction
+MIN_SPACING = 0.05        # mm, least element spacing for the contact coverage of the loop
+MIN_LOOP_NODES = 5        # nodes needed for the circle fit
+ZOOM_MARGIN = 3.0         # mm of rod either side of the knot shown in Fig. 15
+DEFAULT_RADIUS = 0.1      # mm, rod radius of Sect. 7.2 when it cannot be measured from the contact table
+FIGURE_WIDTH = 11.0       # inches, of the rod figures
+ROW_TITLE, ROW_LABEL = 0.35, 0.6   # inches above (panel title) and below (x label) each row of panels
+REPORT_COLUMNS = ["state", "friction", "tightening_force_N", "stabilization_force_N", "zones",
+                  "contact_elements", "elements_in_contact", "intermediate_length_mm", "max_normal_N",
+                  "total_normal_N", "max_tangential_N", "total_tangential_N", "tail_angle_deg",
+                  "loop_radius_mm", "loop_length_mm", "max_penetration_mm"]
+REACTION_COLUMNS = ["zone", "zeta", "abscissa_mm", "s_i", "s_j", "x", "y", "z", "normal_N", "tangential_N",
+                    "state"]
+CMAP = colors.LinearSegmentedColormap.from_list("knot", cm.viridis(np.linspace(0.0, 0.85, 256)))
+
+
+class ReportError(Exception):
+    """A missing or unreadable input; reported as one line `knot_report: PATH: what`."""
+
+
+@dataclass
+class State:
+    """One knot state read from a run folder: the tightened state or a branch's final state."""
+    name: str                # `tightened` or the branch name
+    friction: object         # float, or None when unknown
+    nodes: dict              # column -> array, the rod's nodes sorted by s
+    contact: dict            # column -> array, elements sorted by (zone, zeta)
+    last_step: dict          # column -> value of the last row of steps.csv ({} if there is none)
+
+    @property
+    def label(self):
+        if self.name == "tightened":
+            return "tightened"
+        return f"mu = {self.friction:g}" if self.friction is not None else self.name
+
+
+def read_table(path, numeric, text):
+    """A CSV file as {column: array}, numeric columns as float arrays; checks that it has the columns
+    `numeric` (with numbers) and `text`."""
+    if not path.is_file():
+        raise ReportError(f"{path}: missing")
+    with open(path, newline="") as f:
+        reader = csv.DictReader(f)
+        rows = list(reader)
+        header = reader.fieldnames or []
+    absent = [c for c in [*numeric, *text] if c not in header]
+    if absent:
+        raise ReportError(f"{path}: missing column(s) {', '.join(absent)}")
+    table = {}
+    for column in header:
+        values = [row[column] for row in rows]
+        try:
+            table[column] = np.array(values, dtype=float)
+        except ValueError:
+            table[column] = np.array(values, dtype=object)
+    not_numbers = [c for c in numeric if table[c].dtype != float]
+    if not_numbers:
+        raise ReportError(f"{path}: column(s) {', '.join(not_numbers)} not numeric")
+    return table
+
+
+def select(table, mask_or_order):
+    """The rows of a table picked by a boolean mask or an index array."""
+    return {k: v[mask_or_order] for k, v in table.items()}
+
+
+def read_nodes(path):
+    """The nodes of the rod (the beam named `rod`, else the first beam), sorted by s."""
+    nodes = read_table(path, NODE_COLUMNS, ["beam"])
+    beams = list(dict.fromkeys(nodes["beam"]))
+    if beams:
+        nodes = select(nodes, nodes["beam"] == ("rod" if "rod" in beams else beams[0]))
+    if len(nodes["s"]) < 2:
+        raise ReportError(f"{path}: fewer than two nodes")
+    return select(nodes, np.argsort(nodes["s"], kind="stable"))
+
+
+def read_contact(path):
+    """The contact elements sorted by (zone, zeta)."""
+    contact = read_table(path, CONTACT_COLUMNS, ["state"])
+    return select(contact, np.lexsort((contact["zeta"], contact["zone"])))
+
+
+def read_last_step(path):
+    """The numeric values of the last row of steps.csv as {column: value}; {} with a note if it has none."""
+    if not path.is_file():
+        print(f"note: {path} missing: no pull or stabilisation force")
+        return {}
+    with open(path, newline="") as f:
+        last = None
+        for last in csv.DictReader(f):
+            pass
+    values = {}
+    for column, text in (last or {}).items():
+        try:
+            values[column] = float(text)
+        except (TypeError, ValueError):
+            pass
+    return values
+
+
+def load_state(folder, name, friction):
+    return State(name, friction, read_nodes(folder / "final_nodes.csv"),
+                 read_contact(folder / "contact_final.csv"), read_last_step(folder / "steps.csv"))
+
+
+def friction_from_name(name):
+    match = re.search(r"\d+(?:\.\d*)?|\.\d+", name)
+    return float(match.group()) if match else None
+
+
+def find_branches(run_dir, summary):
+    """[(name, folder, friction)] of the branches, highest friction first (else in the order found)."""
+    found = []
+    listed = summary.get("branches")
+    if isinstance(listed, list) and listed:
+        for entry in listed:
+            entry = entry if isinstance(entry, dict) else {"name": str(entry)}
+            name = entry.get("name", "")
+            friction = entry.get("friction")
+            friction = float(friction) if isinstance(friction, (int, float)) else friction_from_name(name)
+            found.append((name, run_dir / entry.get("folder", f"branches/{name}"), friction))
+    elif (run_dir / "branches").is_dir():
+        for folder in sorted(p for p in (run_dir / "branches").iterdir() if p.is_dir()):
+            found.append((folder.name, folder, friction_from_name(folder.name)))
+    return sorted(found, key=lambda b: -b[2] if b[2] is not None else np.inf)
+
+
+def read_summary(run_dir):
+    path = run_dir / "summary.json"
+    if not path.is_file():
+        return {}
+    try:
+        with open(path) as f:
+            data = json.load(f)
+    except (OSError, ValueError) as e:
+        print(f"note: {path} unreadable ({e}); ignored")
+        return {}
+    return data if isinstance(data, dict) else {}
+
+
+def main_friction(summary):
+    """The main run's friction coefficient if summary.json gives it (`friction` or `contact.friction`)."""
+    contact = summary.get("contact")
+    value = summary.get("friction", contact.get("friction") if isinstance(contact, dict) else None)
+    return float(value) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+
+def centreline(nodes, s):
+    """Centreline points at arc lengths s (linear between nodes, clamped to the rod ends)."""
+    return np.stack([np.interp(s, nodes["s"], nodes[c]) for c in ("x", "y", "z")], axis=-1)
+
+
+def midpoints(contact):
+    return np.stack([(contact[f"{c}_i"] + contact[f"{c}_j"]) / 2 for c in ("x", "y", "z")], axis=-1)
+
+
+def intermediate_abscissa(contact):
+    """Abscissa of each element along the polyline of midpoints, zone after zone (elements sorted)."""
+    mid = midpoints(contact)
+    abscissa = np.zeros(len(mid))
+    start = 0.0
+    for zone in np.unique(contact["zone"]):
+        index = np.flatnonzero(contact["zone"] == zone)
+        steps = np.linalg.norm(np.diff(mid[index], axis=0), axis=1)
+        abscissa[index] = start + np.concatenate([[0.0], np.cumsum(steps)])
+        start = abscissa[index[-1]]
+    return abscissa
+
+
+def intermediate_length(contact, abscissa):
+    """Sum over zones of the abscissa span of the elements in contact."""
+    length = 0.0
+    for zone in np.unique(contact["zone"]):
+        touching = abscissa[(contact["zone"] == zone) & (contact["normal_force"] > 0)]
+        if len(touching):
+            length += touching.max() - touching.min()
+    return length
+
+
+def element_spacing(contact):
+    """Median |difference| of successive abscissa_i within a zone, at least MIN_SPACING."""
+    diffs = [np.abs(np.diff(contact["abscissa_i"][contact["zone"] == zone]))
+             for zone in np.unique(contact["zone"])]
+    diffs = np.concatenate(diffs) if diffs else np.array([])
+    return max(float(np.median(diffs)), MIN_SPACING) if len(diffs) else MIN_SPACING
+
+
+def tail_angle(nodes, s_a, s_b):
+    """Angle (deg) between the tail directions leaving the knot [s_a, s_b]; nan if they are degenerate."""
+    s_min, s_max = nodes["s"][0], nodes["s"][-1]
+    exits = centreline(nodes, np.array([s_a, s_b]))
+    outs = centreline(nodes, np.array([max(s_a - TAIL_CHORD, s_min), min(s_b + TAIL_CHORD, s_max)]))
+    chords = outs - exits
+    lengths = np.linalg.norm(chords, axis=1)
+    if np.any(lengths < 1e-12):
+        return np.nan
+    cosine = np.dot(chords[0], chords[1]) / (lengths[0] * lengths[1])
+    return float(np.degrees(np.arccos(np.clip(cosine, -1.0, 1.0))))
+
+
+def longest_uncovered(centres, half_width, lo, hi):
+    """The longest sub-interval of [lo, hi] farther than half_width from every centre, or None."""
+    best, position = None, lo
+    for start, end in sorted((c - half_width, c + half_width) for c in centres):
+        if start > position and (best is None or start - position > best[1] - best[0]):
+            best = (position, min(start, hi))
+        position = max(position, end)
+        if position >= hi:
+            break
+    if position < hi and (best is None or hi - position > best[1] - best[0]):
+        best = (position, hi)
+    return best
+
+
+def fit_circle(points):
+    """Radius of the least-squares circle through 3-D points: plane by SVD, algebraic (Kasa) fit in it."""
+    centred = points - points.mean(axis=0)
+    _, _, vt = np.linalg.svd(centred, full_matrices=False)
+    u, v = centred @ vt[0], centred @ vt[1]
+    a = np.column_stack([2 * u, 2 * v, np.ones_like(u)])
+    (cu, cv, c), *_ = np.linalg.lstsq(a, u * u + v * v, rcond=None)
+    return float(np.sqrt(c + cu * cu + cv * cv))
+
+
+def loop_geometry(nodes, contact, s_a, s_b):
+    """(radius, length) of the loop of the knot [s_a, s_b]; nan where there is none."""
+    touching = contact["normal_force"] > 0
+    centres = np.concatenate([contact["abscissa_i"][touching], contact["abscissa_j"][touching]])
+    interval = longest_uncovered(centres, element_spacing(contact) / 2, s_a, s_b)
+    if interval is None:
+        return np.nan, np.nan
+    inside = (nodes["s"] >= interval[0]) & (nodes["s"] <= interval[1])
+    points = np.column_stack([nodes[c][inside] for c in ("x", "y", "z")])
+    radius = fit_circle(points) if len(points) >= MIN_LOOP_NODES else np.nan
+    return radius, interval[1] - interval[0]
+
+
+def knot_extent(contact):
+    """(s_a, s_b): the range of rod arc length touched by elements in contact; nan if none is."""
+    touching = contact["normal_force"] > 0
+    if not touching.any():
+        return np.nan, np.nan
+    s = np.concatenate([contact["abscissa_i"][touching], contact["abscissa_j"][touching]])
+    return float(s.min()), float(s.max())
+
+
+def rod_radius(states):
+    """The rod radius: median distance of the contact particles x_i from the centreline at abscissa_i."""
+    distances = []
+    for state in states:
+        contact = state.contact
+        particles = np.column_stack([contact[f"{c}_i"] for c in ("x", "y", "z")])
+        distances.append(np.linalg.norm(particles - centreline(state.nodes, contact["abscissa_i"]), axis=1))
+    distances = np.concatenate(distances) if distances else np.array([])
+    return float(np.median(distances)) if len(distances) else DEFAULT_RADIUS
+
+
+def pull_force(last_step):
+    components = [last_step.get(f"pull_b_f{c}") for c in "xyz"]
+    return float(np.linalg.norm(components)) if None not in components else np.nan
+
+
+def analyse(state):
+    """(row of knot_report.csv as a dict, reactions table as a dict of columns, (s_a, s_b))."""
+    contact = state.contact
+    abscissa = intermediate_abscissa(contact)
+    s_a, s_b = knot_extent(contact)
+    touching = contact["normal_force"] > 0
+    normal, tangential = contact["normal_force"], contact["tangential_force"]
+    if np.isnan(s_a):
+        angle, (radius, length) = np.nan, (np.nan, np.nan)
+    else:
+        angle = tail_angle(state.nodes, s_a, s_b)
+        radius, length = loop_geometry(state.nodes, contact, s_a, s_b)
+    row = {
+        "state": state.name,
+        "friction": state.friction,
+        "tightening_force_N": pull_force(state.last_step),
+        "stabilization_force_N": state.last_step.get("stabilization_force", np.nan),
+        "zones": len(np.unique(contact["zone"])),
+        "contact_elements": len(contact["zone"]),
+        "elements_in_contact": int(touching.sum()),
+        "intermediate_length_mm": intermediate_length(contact, abscissa),
+        "max_normal_N": normal.max() if len(normal) else 0.0,
+        "total_normal_N": normal.sum(),
+        "max_tangential_N": tangential.max() if len(tangential) else 0.0,
+        "total_tangential_N": tangential.sum(),
+        "tail_angle_deg": angle,
+        "loop_radius_mm": radius,
+        "loop_length_mm": length,
+        "max_penetration_mm": (-contact["gap"]).max() if len(contact["gap"]) else np.nan,
+    }
+    mid = midpoints(contact)
+    reactions = {"zone": contact["zone"], "zeta": contact["zeta"], "abscissa_mm": abscissa,
+                 "s_i": contact["abscissa_i"], "s_j": contact["abscissa_j"], "x": mid[:, 0], "y": mid[:, 1],
+                 "z": mid[:, 2], "normal_N": normal, "tangential_N": tangential, "state": contact["state"]}
+    return row, reactions, (s_a, s_b)
+
+
+def format_value(value):
+    if value is None:
+        return ""
+    if isinstance(value, (float, np.floating)):
+        return "nan" if np.isnan(value) else f"{value:.6g}"
+    return str(value)
+
+
+def write_atomically(path, write):
+    """Calls write(temporary path), then renames the result to path."""
+    temporary = path.with_name(f".{path.name}.tmp")
+    try:
+        write(temporary)
+        os.replace(temporary, path)
+    finally:
+        if temporary.exists():
+            temporary.unlink()
+    return path
+
+
+def write_csv(path, columns, rows):
+    def write(temporary):
+        with open(temporary, "w", newline="") as f:
+            out = csv.writer(f)
+            out.writerow(columns)
+            out.writerows([format_value(row[c]) for c in columns] for row in rows)
+    return write_atomically(path, write)
+
+
+def save_figure(fig, path):
+    written = write_atomically(path, lambda temporary: fig.savefig(temporary, format="png", dpi=150))
+    plt.close(fig)
+    return written
+
+
+def markdown_table(rows):
+    lines = ["| " + " | ".join(REPORT_COLUMNS) + " |", "|" + "---|" * len(REPORT_COLUMNS)]
+    for row in rows:
+        cells = [format_value(float(f"{v:.4g}") if isinstance(v, float) and np.isfinite(v) else v)
+                 for v in (row[c] for c in REPORT_COLUMNS)]
+        lines.append("| " + " | ".join(cells) + " |")
+    return "\n".join(lines)
+
+
+def plot_reactions(ax, reactions, title):
+    """Normal and tangential reactions against the abscissa along the intermediate geometry (Fig. 14)."""
+    ax.set_title(title)
+    if not len(reactions["zone"]):
+        ax.text(0.5, 0.5, "no contact element", transform=ax.transAxes, ha="center", va="center")
+        return
+    for k, zone in enumerate(np.unique(reactions["zone"])):
+        index = reactions["zone"] == zone
+        x = reactions["abscissa_mm"][index]
+        ax.plot(x, reactions["normal_N"][index], "o-", color="tab:blue", ms=4,
+                label="Norm. react." if k == 0 else None)
+        ax.plot(x, reactions["tangential_N"][index], "s--", color="tab:red", ms=4,
+                label="Tang. react." if k == 0 else None)
+        if k > 0:
+            ax.axvline(x[0], color="0.6", lw=0.8, ls=":")
+    ax.set_xlabel("curvilinear abscissa along the intermediate geometry (mm)")
+    ax.set_ylabel("reaction (N)")
+    ax.grid(alpha=0.3)
+    ax.legend()
+
+
+def points_per_mm(ax):
+    ax.apply_aspect()
+    (x0, _), (x1, _) = ax.transData.transform([(0.0, 0.0), (1.0, 0.0)])
+    return abs(x1 - x0) * 72.0 / ax.figure.dpi
+
+
+def node_pieces(xy):
+    """The centreline cut at the midpoints between nodes: piece j runs from the midpoint before node j
+    through node j to the midpoint after it (from / to the rod ends), its colour ends pushed 5 % further
+    along the rod so that neighbouring pieces overlap without seams."""
+    mids = (xy[:-1] + xy[1:]) / 2
+    pieces = []
+    for j in range(len(xy)):
+        start = mids[j - 1] if j > 0 else xy[0]
+        end = mids[j] if j < len(mids) else xy[-1]
+        outline = np.array([start, xy[j], end])
+        colour = outline.copy()
+        colour[0] += 0.05 * (start - xy[j])
+        colour[2] += 0.05 * (end - xy[j])
+        pieces.append((outline, colour))
+    return pieces
+
+
+def draw_rod(ax, nodes, norm, radius, limits):
+    """The rod seen from +z: pieces around each node, drawn from the lowest z to the highest with a white
+    rim and a dark edge, so that upper strands hide lower ones; width the rod diameter at the plot scale."""
+    (x0, x1), (y0, y1) = limits
+    ax.set_xlim(x0, x1)
+    ax.set_ylim(y0, y1)
+    ax.set_aspect("equal", adjustable="box")
+    width = max(2 * radius * points_per_mm(ax), 1.5)
+    xy = np.column_stack([nodes["x"], nodes["y"]])
+    style = {"solid_capstyle": "butt", "solid_joinstyle": "round"}
+    pieces = node_pieces(xy)
+    for j in np.argsort(nodes["z"], kind="stable"):
+        outline, colour = pieces[j]
+        ax.plot(*outline.T, color="white", lw=width + 3, **style)
+        ax.plot(*outline.T, color="0.15", lw=width + 1, **style)
+        ax.plot(*colour.T, color=CMAP(norm(nodes["z"][j])), lw=width, **style)
+    ax.plot(*xy[0], "k^", ms=5, zorder=5)  # end A
+    ax.plot(*xy[-1], "ks", ms=5, zorder=5)  # end B
+    ax.set_xlabel("x (mm)")
+    ax.set_ylabel("y (mm)")
+
+
+def view_limits(nodes, mask, margin):
+    x, y = nodes["x"][mask], nodes["y"][mask]
+    return (x.min() - margin, x.max() + margin), (y.min() - margin, y.max() + margin)
+
+
+def rod_figure(panels, radius, path, title):
+    """One panel per (title, nodes, mask of the nodes to frame), each with its own colour scale of z.
+    Panels in rows (one column when they are mostly wide and flat), each row as high as its flattest
+    panel allows at equal aspect."""
+    limits = [view_limits(nodes, mask, 4 * radius) for _, nodes, mask in panels]
+    aspects = [(y1 - y0) / (x1 - x0) for (x0, x1), (y0, y1) in limits]
+    n = len(panels)
+    columns = 1 if np.median(aspects) < 0.4 else min(n, 3)
+    cell = FIGURE_WIDTH / columns
+    plot_width = cell - 1.7  # inches left for the y label and the colour bar
+    row_starts = range(0, n, columns)
+    heights = [float(np.clip(plot_width * max(aspects[k:k + columns]), 1.0, 5.0)) for k in row_starts]
+    total = 0.5 + sum(h + ROW_TITLE + ROW_LABEL for h in heights)
+    fig = plt.figure(figsize=(FIGURE_WIDTH, total))
+    fig.suptitle(title, y=1 - 0.12 / total)
+    top = total - 0.5
+    for start, height in zip(row_starts, heights):
+        bottom = top - ROW_TITLE - height
+        for k in range(start, min(start + columns, n)):
+            panel_title, nodes, mask = panels[k]
+            left = (k - start) * cell + 0.75
+            ax = fig.add_axes([left / FIGURE_WIDTH, bottom / total, plot_width / FIGURE_WIDTH,
+                               height / total])
+            ax.set_anchor("W")
+            z = nodes["z"][mask]
+            norm = colors.Normalize(z.min(), max(z.max(), z.min() + 1e-6))
+            draw_rod(ax, nodes, norm, radius, limits[k])
+            ax.set_title(panel_title)
+            box = ax.get_position()
+            bar = fig.add_axes([box.x1 + 0.12 / FIGURE_WIDTH, box.y0, 0.12 / FIGURE_WIDTH, box.height])
+            fig.colorbar(cm.ScalarMappable(norm=norm, cmap=CMAP), cax=bar, label="z (mm)")
+        top = bottom - ROW_LABEL
+    return save_figure(fig, path)
+
+
+def stage_panels(run_dir, final_nodes):
+    """Fig. 12 panels: the stage-end states in order, then the final state if it is not the last of them."""
+    pattern = re.compile(r"^(\d{3,})_(.+)_nodes\.csv$")
+    files = sorted((int(m.group(1)), m.group(2), p) for p in (run_dir / "stages").iterdir()
+                   if (m := pattern.match(p.name)))
+    panels = []
+    for index, stage, path in files:
+        try:
+            nodes = read_nodes(path)
+        except ReportError as e:
+            print(f"note: stage {stage} left out of fig12: {e}")
+            continue
+        panels.append((f"{index}: {stage}", nodes, np.ones(len(nodes["s"]), bool)))
+    last = panels[-1][1] if panels else None
+    same = last is not None and len(last["s"]) == len(final_nodes["s"]) and all(
+        np.allclose(last[c], final_nodes[c], rtol=0, atol=1e-9) for c in ("x", "y", "z"))
+    if not same:
+        panels.append(("final state (tightened)", final_nodes, np.ones(len(final_nodes["s"]), bool)))
+    return panels
+
+
+def knot_mask(nodes, extent):
+    s_a, s_b = extent
+    if np.isnan(s_a):
+        return np.ones(len(nodes["s"]), bool)
+    return (nodes["s"] >= s_a - ZOOM_MARGIN) & (nodes["s"] <= s_b + ZOOM_MARGIN)
+
+
+def report(run_dir):
+    for required in ("final_nodes.csv", "contact_final.csv"):
+        if not (run_dir / required).is_file():
+            raise ReportError(f"{run_dir / required}: missing")
+    summary = read_summary(run_dir)
+    states = [load_state(run_dir, "tightened", main_friction(summary))]
+    for name, folder, friction in find_branches(run_dir, summary):
+        try:
+            states.append(load_state(folder, name, friction))
+        except ReportError as e:
+            print(f"note: branch {name} skipped: {e}")
+    out_dir = run_dir / "report"
+    out_dir.mkdir(exist_ok=True)
+    radius = rod_radius(states)
+    rows, written, branch_reactions, branch_panels = [], [], [], []
+    for state in states:
+        row, reactions, extent = analyse(state)
+        rows.append(row)
+        n = len(reactions["zone"])
+        written.append(write_csv(out_dir / f"reactions_{state.name}.csv", REACTION_COLUMNS,
+                                 [{c: reactions[c][k] for c in REACTION_COLUMNS} for k in range(n)]))
+        if state.name == "tightened":
+            fig, ax = plt.subplots(figsize=(7.5, 4.5))
+            force = row["tightening_force_N"]
+            plot_reactions(ax, reactions, "Tightened knot: reactions, tightening force "
+                           + (f"{force:.3g} N" if np.isfinite(force) else "unknown"))
+            written.append(save_figure(fig, out_dir / "fig14_tightened_reactions.png"))
+        else:
+            branch_reactions.append((state.label, reactions))
+            branch_panels.append((state.label, state.nodes, knot_mask(state.nodes, extent)))
+    written.insert(0, write_csv(out_dir / "knot_report.csv", REPORT_COLUMNS, rows))
+
+    if branch_reactions:
+        fig, axes = plt.subplots(len(branch_reactions), 1, figsize=(7.5, 3.8 * len(branch_reactions)),
+                                 squeeze=False, sharey=True)
+        for ax, (label, reactions) in zip(axes[:, 0], branch_reactions):
+            plot_reactions(ax, reactions, f"Released knot, {label}: reactions")
+        fig.tight_layout()
+        written.append(save_figure(fig, out_dir / "fig17_released_reactions.png"))
+        written.append(rod_figure(branch_panels, radius, out_dir / "fig15_released_knots.png",
+                                  "Released knots seen from +z"))
+    else:
+        print("note: no branches: fig15 and fig17 skipped")
+
+    if (run_dir / "stages").is_dir():
+        written.append(rod_figure(stage_panels(run_dir, states[0].nodes), radius,
+                                  out_dir / "fig12_stages.png", "Forming and tightening, seen from +z"))
+    else:
+        print(f"note: {run_dir / 'stages'} missing: fig12 skipped")
+
+    print(markdown_table(rows))
+    print()
+    print("written:")
+    for path in written:
+        print(f"  {path}")
+
+
+def main(argv):
+    if len(argv) != 2:
+        print(__doc__.split("\n\n")[1], file=sys.stderr)
+        return 2
+    run_dir = Path(argv[1])
+    try:
+        report(run_dir)
+    except ReportError as e:
+        print(f"knot_report: {e}", file=sys.stderr)
+        return 1
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main(sys.argv))
