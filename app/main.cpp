@@ -5,11 +5,13 @@
 //                                         continue an interrupted run from its newest checkpoint in DIR
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
 //   nodus keys                            print the table of scenario keys (markdown)
+//   nodus knot NODES.csv                  knot type and smallest self-distance of a beam in a nodal table
 //
 // Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
 // converged steps are kept in DIR) or was stopped by --stop-after-steps.
 
+#include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
@@ -21,8 +23,10 @@
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
+#include "nodus/analysis/knot.hpp"
 #include "nodus/output/checkpoint.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
+#include "nodus/output/final_nodes_table.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/logging.hpp"
 #include "nodus/output/progress_reporter.hpp"
@@ -243,6 +247,23 @@ int run(const RunRequest& request) {
   return all_converged ? 0 : kNotConverged;
 }
 
+/// `nodus knot`: the knot type and the smallest self-distance of a beam's centreline in a nodal table.
+int knot(const std::string& path, const std::string& beam, double separation) {
+  const nodus::output::TableCurve c = nodus::output::read_table_curve(path, beam);
+  const nodus::analysis::KnotInvariant k = nodus::analysis::knot_invariant(c.points);
+  const nodus::analysis::SelfDistance d = nodus::analysis::min_self_distance(c.points, c.s, separation);
+  const std::string name = k.is_unknot() ? "unknot" : k.is_trefoil() ? "trefoil" : "another knot";
+  std::printf("%s: beam %s, %zu nodes\n", path.c_str(), c.beam.c_str(), c.points.size());
+  std::printf("knot: Alexander polynomial %s (%s; determinant %lld; %d crossings in the projection used)\n",
+              k.to_string().c_str(), name.c_str(), static_cast<long long>(k.determinant()), k.crossings);
+  if (std::isfinite(d.distance))
+    std::printf(
+        "smallest distance %.6f mm, between s = %.4f and %.4f mm (points at least %g mm apart along "
+        "the beam; node polyline)\n",
+        d.distance, d.s1, d.s2, separation);
+  return 0;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -271,6 +292,20 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("keys", "print the table of scenario keys (markdown)");
 
+  std::string nodes_path, knot_beam;
+  double separation = 1.2;
+  CLI::App* knot_cmd = app.add_subcommand(
+      "knot",
+      "knot type (Alexander polynomial, the curve closed far away) and smallest self-distance of a beam");
+  knot_cmd->add_option("nodes", nodes_path, "nodal table (final_nodes.csv or stages/NNN_STAGE_nodes.csv)")
+      ->required();
+  knot_cmd->add_option("--beam", knot_beam, "beam name (default: the first beam of the table)");
+  knot_cmd
+      ->add_option("--separation", separation,
+                   "smallest distance between points at least this far apart along the beam [mm]")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -283,6 +318,14 @@ int main(int argc, char** argv) {
     if (app.got_subcommand("keys")) {
       std::fputs(nodus::scenario::scenario_keys_markdown().c_str(), stdout);
       return 0;
+    }
+    if (app.got_subcommand("knot")) {
+      try {
+        return knot(nodes_path, knot_beam, separation);
+      } catch (const std::invalid_argument& e) {
+        std::fprintf(stderr, "nodus: %s\n", e.what());
+        return kBadInput;
+      }
     }
     if (app.got_subcommand("check")) {
       const nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(scenario_path);

@@ -1,5 +1,8 @@
 #include "nodus/output/final_nodes_table.hpp"
 
+#include <charconv>
+#include <fstream>
+#include <sstream>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -31,6 +34,64 @@ std::string final_nodes_csv(const model::Model& model, const Eigen::VectorXd& x)
 void write_final_nodes(const std::filesystem::path& path, const model::Model& model,
                        const Eigen::VectorXd& x) {
   write_file_atomically(path, final_nodes_csv(model, x));
+}
+
+namespace {
+
+std::vector<std::string> split_row(const std::string& line) {
+  std::vector<std::string> cells;
+  std::stringstream row(line);
+  for (std::string cell; std::getline(row, cell, ',');) cells.push_back(cell);
+  if (!line.empty() && line.back() == ',') cells.emplace_back();
+  return cells;
+}
+
+}  // namespace
+
+TableCurve read_table_curve(const std::filesystem::path& path, const std::string& beam) {
+  std::ifstream in(path);
+  if (!in)
+    throw std::invalid_argument(
+        fmt::format("{}: expected a readable nodal table (final_nodes.csv), got none", path.string()));
+  const auto fail = [&](int line, const std::string& expected, const std::string& got) {
+    throw std::invalid_argument(
+        fmt::format("{}:{}: expected {}, got {}", path.string(), line, expected, got));
+  };
+  std::string line;
+  if (!std::getline(in, line)) fail(1, "the header beam,node,s,x,y,z,...", "an empty file");
+  const std::vector<std::string> header = split_row(line);
+  const std::vector<std::string> wanted{"beam", "node", "s", "x", "y", "z"};
+  if (header.size() < wanted.size() || !std::equal(wanted.begin(), wanted.end(), header.begin()))
+    fail(1, "the header beam,node,s,x,y,z,...",
+         "'" + (line.size() > 60 ? line.substr(0, 60) + "...'" : line + "'"));
+  TableCurve curve;
+  curve.beam = beam;
+  int number = 1;
+  while (std::getline(in, line)) {
+    ++number;
+    if (line.empty()) continue;
+    const std::vector<std::string> cells = split_row(line);
+    if (cells.size() < wanted.size()) fail(number, "at least 6 values", std::to_string(cells.size()));
+    if (curve.beam.empty()) curve.beam = cells[0];
+    if (cells[0] != curve.beam) continue;
+    double v[4];
+    for (int k = 0; k < 4; ++k) {
+      const std::string& cell = cells[static_cast<std::size_t>(2 + k)];
+      const auto [end, ec] = std::from_chars(cell.data(), cell.data() + cell.size(), v[k]);
+      if (ec != std::errc() || end != cell.data() + cell.size())
+        fail(number, "a number in column " + wanted[static_cast<std::size_t>(2 + k)], "'" + cell + "'");
+    }
+    if (!curve.s.empty() && !(v[0] > curve.s.back()))
+      fail(number, fmt::format("s increasing along beam {}", curve.beam),
+           fmt::format("{:g} after {:g}", v[0], curve.s.back()));
+    curve.s.push_back(v[0]);
+    curve.points.emplace_back(v[1], v[2], v[3]);
+  }
+  if (curve.s.size() < 2)
+    fail(number,
+         fmt::format("at least two nodes of beam {}", curve.beam.empty() ? std::string("(any)") : curve.beam),
+         std::to_string(curve.s.size()));
+  return curve;
 }
 
 }  // namespace nodus::output

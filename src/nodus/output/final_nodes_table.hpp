@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -20,5 +21,18 @@ std::string final_nodes_csv(const model::Model& model, const Eigen::VectorXd& x)
 /// Writes final_nodes_csv(model, x) to `path` through a temporary file and a rename.
 void write_final_nodes(const std::filesystem::path& path, const model::Model& model,
                        const Eigen::VectorXd& x);
+
+/// The centreline of one beam read back from a nodal table (final_nodes.csv, stages/NNN_STAGE_nodes.csv).
+struct TableCurve {
+  std::string beam;
+  std::vector<double> s;                ///< reference arc length of each node [mm], increasing
+  std::vector<Eigen::Vector3d> points;  ///< the centre of each node [mm]
+};
+
+/// Reads the nodes of beam `beam` (empty: the first beam of the file) from a nodal table, in node order.
+/// Throws std::invalid_argument with "PATH:LINE: what was expected, got what" on a file that is not such a
+/// table (missing columns, a value that is not a number, a node out of order, no such beam, fewer than two
+/// nodes).
+TableCurve read_table_curve(const std::filesystem::path& path, const std::string& beam = "");
 
 }  // namespace nodus::output
