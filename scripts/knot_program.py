@@ -116,7 +116,8 @@ def main():
               b.move([(0.15, [4.7, -4.5, -0.3], [0.3, -0.3, -1]), (0.3, [4.2, -3.6, -0.8], [-0.6, 1, -0.2]),
                       (0.5, [3.2, -1.3, -0.8], [-0.2, 1, 0.3]), (0.65, [3.1, -1.0, 0.6], [0.3, 0.2, 1]),
                       (0.8, [4.5, -1.0, 0.8], [1, 0, 0]), (1.0, [6, -1, 0.5], [1, 0, 0])])]
-    # End B's position and orientation are two conditions, so that the position alone can be released.
+    # End B's position and orientation are two conditions, so that either can be let go on its own (letting go
+    # of the position alone was tried: the released knot then comes undone, docs/knot.md).
     for stage in (loop, thread):
         stage[1] += "\n" + stage[1].replace("      end_b:", "      end_b_turn:", 1)
     branches = "".join(f"""
@@ -144,8 +145,8 @@ def main():
 #  pull:    end B is let go (position and section) and a force of {args.force:g} N pulls it along +x; end A stays
 #           clamped;
 #  settle:  the force held until the knot stops moving: the tightened knot (Figs. 13, 14);
-#  branches mu_*: from the tightened knot, the force decreases to 0 (release) and the knot is left to settle
-#           (rest), held by friction alone (Figs. 15-17).
+#  branches mu_*: from the tightened knot, the force decreases to 0 (release) and the knot, held by friction
+#           alone, is left to settle (rest) (Figs. 15-17).
 # Every stage after loop carries a viscous drag (stages[].stabilization, docs/model.md) that keeps the rod from
 # snapping through; it vanishes as the rod comes to rest, and steps.csv reports what is left of it
 # (stabilization_force).
