@@ -45,4 +45,41 @@ inline fs::path write(const std::string& name, const std::string& text) {
   return p;
 }
 
+/// A tool beam presses a beam on two supports, drags it with friction, moves back and is lifted off:
+/// four stages, 11 steps, contact forces and friction (examples/tool_drag.yaml, coarser).
+inline const std::string kDrag = R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: beam, material: nylon, radius: 0.1, length: 10, elements: 20, start: [-5, 0, 0],
+     direction: [1, 0, 0], director1: [0, 1, 0]}
+  - {name: tool, material: nylon, radius: 0.2, length: 2, elements: 2, start: [0, -1, 0.31],
+     direction: [0, 1, 0], director1: [1, 0, 0]}
+conditions:
+  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
+  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
+  - {name: press, type: rigid, beam: tool}
+stages:
+  - name: press
+    steps: 3
+    motions:
+      press: {translation: [0, 0, -0.1]}
+  - name: drag
+    steps: 4
+    motions:
+      press: {translation: [0, 0.3, -0.1]}
+  - name: back
+    steps: 3
+    motions:
+      press: {translation: [0, 0.1, -0.1]}
+  - name: lift
+    steps: 1
+    contact_off: [tool]
+contact:
+  self_contact: false
+  friction: 0.3
+output:
+  vtk_every: 2
+  contact_csv: true
+)";
+
 }  // namespace nodus::testing

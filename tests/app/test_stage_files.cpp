@@ -26,32 +26,11 @@ std::string read(const fs::path& path) {
   return text.str();
 }
 
-/// The tool drag of examples/tool_drag.yaml, coarser: press, drag, and (when `lift`) the tool taken out.
-std::string tool_drag(bool lift) {
-  std::string text = R"(units: {length: mm, force: N, stress: MPa, time: s}
-materials:
-  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
-beams:
-  - {name: beam, material: nylon, radius: 0.1, length: 10, elements: 20, start: [-5, 0, 0],
-     direction: [1, 0, 0], director1: [0, 1, 0]}
-  - {name: tool, material: nylon, radius: 0.2, length: 2, elements: 4, start: [0, -1, 0.31],
-     direction: [0, 1, 0], director1: [-1, 0, 0]}
-conditions:
-  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
-  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
-  - {name: press, type: rigid, beam: tool}
-stages:
-  - name: press
-    steps: 3
-    motions:
-      press: {translation: [0, 0, -0.1]}
-  - name: drag
-    steps: 4
-    motions:
-      press: {translation: [0, 0.2, -0.1]}
-)";
-  if (lift) text += "  - name: lift\n    steps: 1\n    contact_off: [tool]\n";
-  return text + "contact:\n  self_contact: false\n  friction: 0.3\noutput: {vtk_every: 0}\n";
+/// The tool drag of the resume tests (kDrag: press, drag, back, lift), or only its first two stages.
+std::string tool_drag(bool whole) {
+  const std::string& text = nodus::testing::kDrag;
+  if (whole) return text;
+  return text.substr(0, text.find("  - name: back")) + text.substr(text.find("contact:"));
 }
 
 TEST(StageFiles, HoldTheStateOfEachStageEnd) {
@@ -71,8 +50,8 @@ TEST(StageFiles, HoldTheStateOfEachStageEnd) {
   EXPECT_EQ(read(full / "stages" / "001_drag_contact.csv"), read(partial / "contact_final.csv"));
   EXPECT_EQ(read(partial / "stages" / "001_drag_nodes.csv"), read(partial / "final_nodes.csv"));
   // The last stage's tables are the final ones.
-  EXPECT_EQ(read(full / "stages" / "002_lift_nodes.csv"), read(full / "final_nodes.csv"));
-  EXPECT_EQ(read(full / "stages" / "002_lift_contact.csv"), read(full / "contact_final.csv"));
+  EXPECT_EQ(read(full / "stages" / "003_lift_nodes.csv"), read(full / "final_nodes.csv"));
+  EXPECT_EQ(read(full / "stages" / "003_lift_contact.csv"), read(full / "contact_final.csv"));
   EXPECT_TRUE(fs::exists(full / "stages" / "000_press_nodes.csv"));
   EXPECT_NE(read(full / "stages" / "000_press_nodes.csv"), read(full / "stages" / "001_drag_nodes.csv"));
 }
