@@ -139,6 +139,10 @@ TEST(Summary, JsonHoldsEveryField) {
   EXPECT_EQ(j.at("final_time"), 0.75);
   EXPECT_EQ(j.at("scenario"), d.scenario);
   EXPECT_EQ(j.size(), 14u);
+  EXPECT_FALSE(j.contains("friction"));  // without contact forces
+  d.friction = 0.25;
+  EXPECT_EQ(nlohmann::json::parse(summary_json(d)).at("friction"), 0.25);
+  d.friction.reset();
 #else
   for (const char* key : {"\"dofs\": 72", "\"nodes\": 8", "\"elements\": 3", "\"beams\": 2", "\"steps\": 40",
                           "\"newton_iterations\": 163", "\"converged\": false", "\"wall_seconds\": 1.5",

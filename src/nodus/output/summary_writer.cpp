@@ -26,6 +26,7 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.failure = summary.failure;
   data.final_time = sim.time();
   data.scenario = sim.scenario().path;
+  if (sim.contact() && sim.contact_forces()) data.friction = sim.scenario().contact.friction;
   if (sim.scenario().origin) data.branch = sim.scenario().origin->name;
   return data;
 }
@@ -46,6 +47,7 @@ std::string summary_json(const SummaryData& data) {
   j["nodes"] = data.nodes;
   j["elements"] = data.elements;
   j["dofs"] = data.dofs;
+  if (data.friction) j["friction"] = *data.friction;
   if (!data.branch.empty()) j["branch"] = data.branch;
   if (!data.branches.empty()) {
     j["branches"] = nlohmann::ordered_json::array();

@@ -38,6 +38,7 @@ struct SummaryData {
   std::string failure;                  ///< why the run stopped early; empty if it did not
   double final_time = 0.0;              ///< load time of the last converged state [s]
   std::string scenario;                 ///< path of the scenario file
+  std::optional<double> friction;       ///< contact.friction of the run, with contact forces [-]
   std::string branch;                   ///< for the run of a branch: its name; empty for the main run
   std::vector<BranchOutcome> branches;  ///< main run of a scenario with branches: their outcomes
 };
@@ -46,7 +47,7 @@ struct SummaryData {
 SummaryData summary_data(const simulation::Simulation& sim, const simulation::RunSummary& summary);
 
 /// The JSON document (an object with the members of SummaryData under the same names, indented, '\n' ended;
-/// `branch` only for a branch, `branches` only when there are some).
+/// `friction` only with contact forces, `branch` only for a branch, `branches` only when there are some).
 std::string summary_json(const SummaryData& data);
 
 /// The SummaryData of a summary.json written by write_summary. Throws std::runtime_error naming the file if
