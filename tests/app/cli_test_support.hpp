@@ -38,6 +38,14 @@ inline Result run_nodus(const std::string& args) {
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, text.str()};
 }
 
+/// The whole content of the file at `path` (empty if it cannot be read).
+inline std::string read_file(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
 /// Writes `text` to scratch()/name and returns its path.
 inline fs::path write(const std::string& name, const std::string& text) {
   const fs::path p = scratch() / name;

@@ -54,10 +54,7 @@ std::pair<int, std::string> knot(const std::string& text, const std::string& opt
   const int status = std::system(
       (std::string(NODUS_BINARY) + " knot " + nodes.string() + " " + options + " > " + out.string() + " 2>&1")
           .c_str());
-  std::ifstream in(out);
-  std::stringstream result;
-  result << in.rdbuf();
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, result.str()};
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, nodus::testing::read_file(out)};
 }
 
 const double kPi = std::numbers::pi;

@@ -30,10 +30,7 @@ using nodus::testing::scratch;
 using nodus::testing::write;
 
 std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return nodus::testing::read_file(path);
 }
 
 std::string replaced(std::string text, const std::string& from, const std::string& to) {

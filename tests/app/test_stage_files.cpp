@@ -20,10 +20,7 @@ using nodus::testing::scratch;
 using nodus::testing::write;
 
 std::string read(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return nodus::testing::read_file(path);
 }
 
 /// The tool drag of the resume tests (kDrag: press, drag, back, lift), or only its first two stages.
