@@ -1,6 +1,7 @@
 // nodus: quasi-static equilibrium of elastic beam assemblies under large deformations.
 //
-//   nodus run SCENARIO.yaml --out DIR     run a scenario, write results into DIR
+//   nodus run SCENARIO.yaml --out DIR     run a scenario, write results into DIR (its branches side by side,
+//                                         --jobs at a time)
 //   nodus run SCENARIO.yaml --out DIR --resume
 //                                         continue an interrupted run from its newest checkpoint in DIR
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
@@ -11,12 +12,16 @@
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
 // converged steps are kept in DIR) or was stopped by --stop-after-steps.
 
+#include <algorithm>
+#include <atomic>
 #include <cmath>
 #include <cstdio>
 #include <exception>
 #include <filesystem>
 #include <optional>
 #include <string>
+#include <thread>
+#include <utility>
 #include <vector>
 
 #include <fmt/format.h>
@@ -51,12 +56,14 @@ struct RunRequest {
   bool quiet = false;
   bool resume = false;
   int stop_after_steps = 0;  ///< for tests: stop as if killed after this many converged steps (0: never)
+  int jobs = 1;              ///< branches run side by side, at most
 };
 
 /// The output writers of one run (the main run, or a branch) into `dir`.
 class RunOutputs {
  public:
-  RunOutputs(const fs::path& dir, const nodus::scenario::Scenario& scenario, bool quiet, bool write_summary)
+  RunOutputs(const fs::path& dir, const nodus::scenario::Scenario& scenario, bool quiet, bool write_summary,
+             std::string label = {})
       : steps_(dir),
         vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
         final_nodes_(dir),
@@ -64,7 +71,7 @@ class RunOutputs {
         stage_ends_(dir),
         summary_(dir, write_summary),
         checkpoints_(dir, scenario.output.checkpoint_every),
-        progress_(scenario.output.progress_seconds) {
+        progress_(scenario.output.progress_seconds, std::move(label)) {
     // The checkpoint comes after the files of its step, so that they are complete up to it.
     observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
     if (!quiet) observers_.push_back(&progress_);
@@ -110,6 +117,80 @@ struct BranchStart {
   bool finished = false;
   std::optional<nodus::output::CheckpointInfo> own;  ///< its newest checkpoint, when it has one
 };
+
+/// The message of a run stopped by --stop-after-steps.
+void stopped_as_asked(const RunRequest& request, const nodus::simulation::Simulation& sim) {
+  spdlog::error(
+      "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; continue "
+      "it "
+      "with --resume",
+      request.stop_after_steps, sim.time());
+}
+
+/// What became of one branch.
+struct BranchRun {
+  nodus::output::BranchOutcome outcome;
+  bool interrupted = false;  ///< stopped by --stop-after-steps
+  int new_steps = 0;         ///< steps computed here (not read back from a checkpoint)
+};
+
+/// Runs branch `b` of `main_scenario` into DIR/branches/NAME from where `start` says, or reads back its
+/// outcome if it had finished. `steps_left` > 0 stops it, as if killed, after that many converged steps.
+/// Branches share nothing but the main run's checkpoint they read, so several may run at once.
+BranchRun run_branch(const RunRequest& request, const nodus::scenario::Scenario& main_scenario, std::size_t b,
+                     const BranchStart& start, int steps_left) {
+  const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
+  nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
+  const fs::path dir = request.out / "branches" / branch.name;
+  BranchRun run;
+  nodus::output::BranchOutcome& outcome = run.outcome;
+  outcome.name = branch.name;
+  outcome.from = main_scenario.stages.at(static_cast<std::size_t>(branch.from)).name;
+  outcome.friction = branch_scenario.contact.friction;
+  outcome.folder = "branches/" + branch.name;
+  if (start.finished) {
+    const nodus::output::SummaryData done = nodus::output::read_summary(dir / "summary.json");
+    outcome.converged = done.converged;
+    outcome.failure = done.failure;
+    outcome.steps = done.steps;
+    outcome.final_time = done.final_time;
+    return run;
+  }
+  const fs::path from =
+      start.own ? start.own->path : branch_start_checkpoint(request.out, main_scenario, branch);
+  if (!fs::exists(from)) {
+    outcome.failure = fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
+    spdlog::error("branch '{}' {}", branch.name, outcome.failure);
+    return run;
+  }
+  nodus::simulation::Simulation branch_sim(std::move(branch_scenario));
+  nodus::simulation::SimulationState state = nodus::output::read_checkpoint(from, branch_sim.scenario());
+  if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
+    throw std::runtime_error(
+        fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
+  spdlog::info("branch '{}': {} {}", branch.name, start.own ? "resuming from" : "starting from",
+               from.string());
+  branch_sim.restore(std::move(state), start.own ? nodus::simulation::StartKind::resumed
+                                                 : nodus::simulation::StartKind::branched);
+  RunOutputs branch_outputs(dir, branch_sim.scenario(), request.quiet, true, "branch " + branch.name + ": ");
+  const nodus::simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), {steps_left});
+  run.new_steps = summary.new_steps;
+  if (summary.interrupted) {
+    run.interrupted = true;
+    stopped_as_asked(request, branch_sim);
+    return run;
+  }
+  outcome.converged = summary.converged;
+  outcome.failure = summary.failure;
+  outcome.steps = summary.steps;
+  outcome.final_time = branch_sim.time();
+  spdlog::info("branch '{}': {} steps, {} Newton iterations, {:.2f} s; results in {}", branch.name,
+               summary.steps, summary.newton_iterations, summary.wall_seconds, dir.string());
+  if (!summary.converged)
+    spdlog::error("branch '{}' stopped: {}; its last converged state is kept in {}", branch.name,
+                  summary.failure, dir.string());
+  return run;
+}
 
 int run(const RunRequest& request) {
   nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(request.scenario_path);
@@ -164,17 +245,13 @@ int run(const RunRequest& request) {
     }
   }
   int steps_left = request.stop_after_steps;
-  const auto stopped = [&](const nodus::simulation::Simulation& s) {
-    spdlog::error(
-        "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; "
-        "continue it with --resume",
-        request.stop_after_steps, s.time());
-    return kNotConverged;
-  };
 
   RunOutputs outputs(out, main_scenario, request.quiet, main_scenario.branches.empty());
   const nodus::simulation::RunSummary summary = sim.run(outputs.observers(), {steps_left});
-  if (summary.interrupted) return stopped(sim);
+  if (summary.interrupted) {
+    stopped_as_asked(request, sim);
+    return kNotConverged;
+  }
   if (steps_left > 0) steps_left -= summary.new_steps;
   spdlog::info("{} steps, {} Newton iterations, {:.2f} s; results in {}", summary.steps,
                summary.newton_iterations, summary.wall_seconds, out.string());
@@ -185,60 +262,40 @@ int run(const RunRequest& request) {
 
   if (main_scenario.branches.empty()) return all_converged ? 0 : kNotConverged;
 
+  // The branches, side by side on up to `jobs` threads; one at a time when a step count is to stop the run.
+  const std::size_t count = main_scenario.branches.size();
+  const std::size_t jobs =
+      request.stop_after_steps > 0 ? 1 : std::min(count, static_cast<std::size_t>(request.jobs));
+  std::vector<BranchRun> runs(count);
+  if (jobs <= 1) {
+    for (std::size_t b = 0; b < count; ++b) {
+      runs[b] = run_branch(request, main_scenario, b, branch_starts[b], steps_left);
+      if (runs[b].interrupted) return kNotConverged;
+      if (steps_left > 0) steps_left -= runs[b].new_steps;
+    }
+  } else {
+    spdlog::info("{} branches, {} at a time", count, jobs);
+    std::atomic<std::size_t> next{0};
+    std::vector<std::exception_ptr> errors(count);
+    const auto work = [&] {
+      for (std::size_t b = next++; b < count; b = next++) {
+        try {
+          runs[b] = run_branch(request, main_scenario, b, branch_starts[b], 0);
+        } catch (...) {
+          errors[b] = std::current_exception();
+        }
+      }
+    };
+    std::vector<std::thread> threads;
+    for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
+    for (std::thread& t : threads) t.join();
+    for (const std::exception_ptr& e : errors)
+      if (e) std::rethrow_exception(e);
+  }
   std::vector<nodus::output::BranchOutcome> outcomes;
-  for (std::size_t b = 0; b < main_scenario.branches.size(); ++b) {
-    const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
-    nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
-    const fs::path dir = branch_dir(branch);
-    nodus::output::BranchOutcome outcome;
-    outcome.name = branch.name;
-    outcome.from = main_scenario.stages.at(static_cast<std::size_t>(branch.from)).name;
-    outcome.friction = branch_scenario.contact.friction;
-    outcome.folder = "branches/" + branch.name;
-    const BranchStart& start = branch_starts[b];
-    if (start.finished) {
-      const nodus::output::SummaryData done = nodus::output::read_summary(dir / "summary.json");
-      outcome.converged = done.converged;
-      outcome.failure = done.failure;
-      outcome.steps = done.steps;
-      outcome.final_time = done.final_time;
-      outcomes.push_back(outcome);
-      all_converged = all_converged && outcome.converged;
-      continue;
-    }
-    const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
-    if (!fs::exists(from)) {
-      outcome.failure =
-          fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
-      spdlog::error("branch '{}' {}", branch.name, outcome.failure);
-      outcomes.push_back(outcome);
-      all_converged = false;
-      continue;
-    }
-    nodus::simulation::Simulation branch_sim(std::move(branch_scenario));
-    nodus::simulation::SimulationState state = nodus::output::read_checkpoint(from, branch_sim.scenario());
-    if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
-      throw std::runtime_error(
-          fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
-    spdlog::info("branch '{}': {} {}", branch.name, start.own ? "resuming from" : "starting from",
-                 from.string());
-    branch_sim.restore(std::move(state), start.own ? nodus::simulation::StartKind::resumed
-                                                   : nodus::simulation::StartKind::branched);
-    RunOutputs branch_outputs(dir, branch_sim.scenario(), request.quiet, true);
-    const nodus::simulation::RunSummary branch_summary =
-        branch_sim.run(branch_outputs.observers(), {steps_left});
-    if (branch_summary.interrupted) return stopped(branch_sim);
-    if (steps_left > 0) steps_left -= branch_summary.new_steps;
-    outcome.converged = branch_summary.converged;
-    outcome.failure = branch_summary.failure;
-    outcome.steps = branch_summary.steps;
-    outcome.final_time = branch_sim.time();
-    spdlog::info("branch '{}': {} steps; results in {}", branch.name, branch_summary.steps, dir.string());
-    if (!branch_summary.converged)
-      spdlog::error("branch '{}' stopped: {}; its last converged state is kept in {}", branch.name,
-                    branch_summary.failure, dir.string());
-    all_converged = all_converged && outcome.converged;
-    outcomes.push_back(outcome);
+  for (BranchRun& r : runs) {
+    all_converged = all_converged && r.outcome.converged;
+    outcomes.push_back(std::move(r.outcome));
   }
   // The main run's summary, written last: it lists the branches and marks the whole run as finished.
   nodus::output::SummaryData data = *outputs.summary().data();
@@ -281,10 +338,17 @@ int main(int argc, char** argv) {
   run_cmd->add_flag("--verbose,-v", verbose, "log every Newton iteration");
   run_cmd->add_flag("--resume", request.resume,
                     "continue the interrupted run in the output directory from its newest checkpoint");
+  request.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  run_cmd
+      ->add_option("--jobs,-j", request.jobs,
+                   "branches run side by side, at most (default: the number of hardware threads); each is "
+                   "computed as it would be alone, so the results do not depend on it")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
   run_cmd
       ->add_option("--stop-after-steps", request.stop_after_steps,
                    "for testing: stop the run as if it were killed after N converged steps (after the "
-                   "checkpoint then due), exit status 3")
+                   "checkpoint then due), exit status 3; branches then run one at a time")
       ->check(CLI::PositiveNumber);
 
   CLI::App* check_cmd = app.add_subcommand("check", "validate a scenario and print the resolved settings");

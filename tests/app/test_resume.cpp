@@ -233,6 +233,29 @@ TEST(Branches, ContinueTheMainRun) {
   EXPECT_NE(read(same / "summary.json").find("\"branch\": \"same\""), std::string::npos);
 }
 
+TEST(Branches, SideBySideAsOneAtATime) {
+  // Each branch is computed from the same checkpoint whatever runs beside it: run two at a time, the files
+  // are those of the branches run one after the other.
+  const fs::path scenario = write("branches_jobs.yaml", kDrag + kBranches);
+  const auto run_with = [&](int jobs) {
+    const fs::path out = scratch() / ("branches_jobs_" + std::to_string(jobs));
+    fs::remove_all(out);
+    const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --jobs " +
+                               std::to_string(jobs));
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_EQ(r.err.find("2 branches, 2 at a time") != std::string::npos, jobs == 2) << r.err;
+    return out;
+  };
+  const fs::path one = run_with(1), two = run_with(2);
+  expect_same_results(one, two);
+  EXPECT_TRUE(fs::exists(two / "branches" / "mu_0.1" / "final_nodes.csv"));
+  EXPECT_EQ(read(two / "summary.json").find("\"converged\": false"), std::string::npos);
+  const Result zero =
+      run_nodus("run " + scenario.string() + " --out " + (scratch() / "jobs_0").string() + " -q --jobs 0");
+  EXPECT_EQ(zero.status, 2) << zero.err;
+  EXPECT_FALSE(fs::exists(scratch() / "jobs_0"));
+}
+
 TEST(Branches, ResumeInsideABranch) {
   const fs::path scenario = write("branches_resume.yaml", kDrag + kBranches);
   const fs::path reference = reference_run(scenario, "branches_resume");

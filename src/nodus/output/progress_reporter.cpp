@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include <spdlog/spdlog.h>
 
@@ -9,8 +10,8 @@
 
 namespace nodus::output {
 
-ProgressReporter::ProgressReporter(double min_interval_seconds)
-    : min_interval_(std::max(0.0, min_interval_seconds)) {}
+ProgressReporter::ProgressReporter(double min_interval_seconds, std::string label)
+    : min_interval_(std::max(0.0, min_interval_seconds)), label_(std::move(label)) {}
 
 void ProgressReporter::on_start(const simulation::Simulation& sim) {
   start_ = Clock::now();
@@ -40,7 +41,7 @@ void ProgressReporter::on_step(const simulation::Simulation& sim, const simulati
   info.newton_iterations = record.newton_iterations;
   info.residual = record.residual;
   info.elapsed_seconds = std::chrono::duration<double>(now - start_).count();
-  spdlog::info("{}", progress_line(info));
+  spdlog::info("{}{}", label_, progress_line(info));
 }
 
 }  // namespace nodus::output

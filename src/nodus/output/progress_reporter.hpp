@@ -2,6 +2,7 @@
 /// Progress lines through spdlog (info level) while a run goes on; see progress_line.hpp for the text.
 
 #include <chrono>
+#include <string>
 
 #include "nodus/simulation/simulation.hpp"
 
@@ -11,8 +12,9 @@ namespace nodus::output {
 /// always after the last step of a stage.
 class ProgressReporter : public simulation::StepObserver {
  public:
-  /// `min_interval_seconds`: least wall time between two lines [s] (0: a line per step).
-  explicit ProgressReporter(double min_interval_seconds);
+  /// `min_interval_seconds`: least wall time between two lines [s] (0: a line per step). `label`, when not
+  /// empty, starts every line (e.g. "branch mu_0.30: ", to tell apart runs that report side by side).
+  explicit ProgressReporter(double min_interval_seconds, std::string label = {});
 
   void on_start(const simulation::Simulation& sim) override;
   void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
@@ -20,6 +22,7 @@ class ProgressReporter : public simulation::StepObserver {
  private:
   using Clock = std::chrono::steady_clock;
   double min_interval_;
+  std::string label_;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_line_ = start_;
   double start_time_ = 0.0;  ///< load time at on_start [s]
