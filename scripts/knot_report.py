@@ -33,7 +33,8 @@ Outputs, in DIR/report/ (each written to a temporary name, then renamed):
   fig14_tightened_reactions.png        reactions along the intermediate geometry, tightened state
   fig17_released_reactions.png         the same, one panel per branch (highest friction first)
   fig12_stages.png                     the rod seen from +z at the end of each stage (and the final state
-                                       if it differs from the last stage end), coloured by z
+                                       if it differs from the last stage end), coloured by z, with the
+                                       other beams in contact with it (the clamping beams) in grey
   fig15_released_knots.png             each branch's knot seen from +z, nodes with s in [s_a-3, s_b+3]
 """
 
@@ -130,6 +131,23 @@ def read_nodes(path):
     if len(nodes["s"]) < 2:
         raise ReportError(f"{path}: fewer than two nodes")
     return select(nodes, np.argsort(nodes["s"], kind="stable"))
+
+
+def tools_in_contact(nodes_path):
+    """The other beams with contact elements on the rod at the state of `nodes_path` (a stage-end table),
+    from its `_contact.csv` companion: [nodes of each, sorted by s]. Empty when there is no companion."""
+    contact_path = nodes_path.with_name(nodes_path.name.replace("_nodes.csv", "_contact.csv"))
+    if not contact_path.is_file():
+        return []
+    pairs = read_table(contact_path, [], ["beam_i", "beam_j"])
+    names = {b for i, j in zip(pairs["beam_i"], pairs["beam_j"]) if "rod" in (i, j) for b in (i, j)} - {"rod"}
+    nodes = read_table(nodes_path, NODE_COLUMNS, ["beam"])
+    tools = []
+    for name in sorted(names):
+        beam = select(nodes, nodes["beam"] == name)
+        if len(beam["s"]) >= 2:
+            tools.append(select(beam, np.argsort(beam["s"], kind="stable")))
+    return tools
 
 
 def read_contact(path):
@@ -443,9 +461,11 @@ def node_pieces(xy):
     return pieces
 
 
-def draw_rod(ax, nodes, norm, radius, limits):
+def draw_rod(ax, nodes, norm, radius, limits, tools=()):
     """The rod seen from +z: pieces around each node, drawn from the lowest z to the highest with a white
-    rim and a dark edge, so that upper strands hide lower ones; width the rod diameter at the plot scale."""
+    rim and a dark edge, so that upper strands hide lower ones; width the rod diameter at the plot scale.
+    `tools` (other beams, e.g. the clamping beams) are drawn in translucent grey, under the rod when their
+    mean z is below the rod's nodes within their reach, over it otherwise."""
     (x0, x1), (y0, y1) = limits
     ax.set_xlim(x0, x1)
     ax.set_ylim(y0, y1)
@@ -454,11 +474,27 @@ def draw_rod(ax, nodes, norm, radius, limits):
     xy = np.column_stack([nodes["x"], nodes["y"]])
     style = {"solid_capstyle": "butt", "solid_joinstyle": "round"}
     pieces = node_pieces(xy)
+
+    def draw_tool(tool):
+        ax.plot(tool["x"], tool["y"], color="0.35", alpha=0.55, lw=width, solid_capstyle="butt", zorder=3)
+
+    above = []
+    for tool in tools:
+        # The rod's nodes under the tool (within a diameter of it, seen from +z) decide whether it is above.
+        near = np.min(np.hypot(nodes["x"][:, None] - tool["x"][None, :],
+                               nodes["y"][:, None] - tool["y"][None, :]), axis=1) < 2 * radius
+        reference = np.median(nodes["z"][near]) if near.any() else np.median(nodes["z"])
+        if np.mean(tool["z"]) > reference:
+            above.append(tool)
+        else:
+            draw_tool(tool)
     for j in np.argsort(nodes["z"], kind="stable"):
         outline, colour = pieces[j]
         ax.plot(*outline.T, color="white", lw=width + 3, **style)
         ax.plot(*outline.T, color="0.15", lw=width + 1, **style)
         ax.plot(*colour.T, color=CMAP(norm(nodes["z"][j])), lw=width, **style)
+    for tool in above:
+        draw_tool(tool)
     ax.plot(*xy[0], "k^", ms=5, zorder=5)  # end A
     ax.plot(*xy[-1], "ks", ms=5, zorder=5)  # end B
     ax.set_xlabel("x (mm)")
@@ -471,10 +507,11 @@ def view_limits(nodes, mask, margin):
 
 
 def rod_figure(panels, radius, path, title):
-    """One panel per (title, nodes, mask of the nodes to frame), each with its own colour scale of z.
+    """One panel per (title, nodes, mask of the nodes to frame[, other beams to draw]), each with its own
+    colour scale of z.
     Panels in rows (one column when they are mostly wide and flat), each row as high as its flattest
     panel allows at equal aspect."""
-    limits = [view_limits(nodes, mask, 4 * radius) for _, nodes, mask in panels]
+    limits = [view_limits(nodes, mask, 4 * radius) for _, nodes, mask, *_ in panels]
     aspects = [(y1 - y0) / (x1 - x0) for (x0, x1), (y0, y1) in limits]
     n = len(panels)
     columns = 1 if np.median(aspects) < 0.4 else min(n, 3)
@@ -489,14 +526,14 @@ def rod_figure(panels, radius, path, title):
     for start, height in zip(row_starts, heights):
         bottom = top - ROW_TITLE - height
         for k in range(start, min(start + columns, n)):
-            panel_title, nodes, mask = panels[k]
+            panel_title, nodes, mask, *tools = panels[k]
             left = (k - start) * cell + 0.75
             ax = fig.add_axes([left / FIGURE_WIDTH, bottom / total, plot_width / FIGURE_WIDTH,
                                height / total])
             ax.set_anchor("W")
             z = nodes["z"][mask]
             norm = colors.Normalize(z.min(), max(z.max(), z.min() + 1e-6))
-            draw_rod(ax, nodes, norm, radius, limits[k])
+            draw_rod(ax, nodes, norm, radius, limits[k], tools[0] if tools else ())
             ax.set_title(panel_title)
             box = ax.get_position()
             bar = fig.add_axes([box.x1 + 0.12 / FIGURE_WIDTH, box.y0, 0.12 / FIGURE_WIDTH, box.height])
@@ -517,7 +554,7 @@ def stage_panels(run_dir, final_nodes):
         except ReportError as e:
             print(f"note: stage {stage} left out of fig12: {e}")
             continue
-        panels.append((f"{index}: {stage}", nodes, np.ones(len(nodes["s"]), bool)))
+        panels.append((f"{index}: {stage}", nodes, np.ones(len(nodes["s"]), bool), tools_in_contact(path)))
     last = panels[-1][1] if panels else None
     same = last is not None and len(last["s"]) == len(final_nodes["s"]) and all(
         np.allclose(last[c], final_nodes[c], rtol=0, atol=1e-9) for c in ("x", "y", "z"))

@@ -19,6 +19,8 @@ Checked against what:
                    0 plus k 2 rho sin(dtheta / 2), since the polyline of a circle's points uses chords.
                    Also checked: the length between the first and last element in contact (zero-force
                    elements at both ends), the max and sum of the reactions, and the max penetration.
+  other beams      a stage table with the rod and two other beams, one paired with the rod in the stage's
+                   contact table: that one only is returned for drawing, its nodes sorted by s.
   end to end       a fake run folder (tightened state, branch mu_0.30, one stage). The script exits 0 and
                    writes knot_report.csv: one row per state, friction 0.3 for the branch, pull force
                    |(0.3, 0.4, 0)| = 0.5 from the last row of steps.csv, tail angles 120 and 150, loop
@@ -326,6 +328,27 @@ class KnotReportTest(unittest.TestCase):
                 self.assertGreater(len(data), 1000)
                 self.assertEqual(data[:8], PNG_SIGNATURE)
         self.assertEqual([p.name for p in out.iterdir() if p.name.startswith(".")], [])  # no temporary
+
+    # other beams in the stage pictures ----------------------------------------------------------------
+    def test_tools_in_contact_with_the_rod(self):
+        # A stage table with the rod and two straight beams, `clamp` paired with the rod in the contact table
+        # and `far` paired with nothing: only `clamp` is drawn, its nodes sorted by s; a table without its
+        # _contact.csv companion gives none.
+        stage = self.tmp / "stages"
+        rod = node_rows(S, [(s, 0.0, 0.0) for s in S])
+        clamp_s = np.array([2.0, 0.0, 1.0])  # written out of order
+        clamp = node_rows(clamp_s, [(3.0, s - 1.0, 0.2) for s in clamp_s], beam="clamp")
+        far = node_rows(clamp_s, [(9.0, s, 5.0) for s in clamp_s], beam="far")
+        write_table(stage / "001_clamp_nodes.csv", NODE_HEADER, rod + clamp + far)
+        row = contact_row(0, 0.5, 3.0, 1.0, (3.0, 0.0, 0.0), (3.0, 0.0, 0.2), 0.01)
+        write_table(stage / "001_clamp_contact.csv", CONTACT_HEADER, [{**row, "beam_j": "clamp"}])
+        tools = kr.tools_in_contact(stage / "001_clamp_nodes.csv")
+        self.assertEqual(len(tools), 1)
+        self.assertEqual(list(tools[0]["beam"]), ["clamp"] * 3)
+        np.testing.assert_array_equal(tools[0]["s"], [0.0, 1.0, 2.0])
+        np.testing.assert_array_equal(tools[0]["y"], [-1.0, 0.0, 1.0])
+        write_table(stage / "002_free_nodes.csv", NODE_HEADER, rod + clamp)
+        self.assertEqual(kr.tools_in_contact(stage / "002_free_nodes.csv"), [])
 
     # bad input ------------------------------------------------------------------------------------
     def test_bad_input_fails_with_one_line(self):
