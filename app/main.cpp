@@ -1,7 +1,7 @@
 // nodus: quasi-static equilibrium of elastic beam assemblies under large deformations.
 //
 //   nodus run SCENARIO.yaml --out DIR     run a scenario, write results into DIR (its branches side by side,
-//                                         --jobs at a time)
+//                                         --jobs at a time, each in a process of its own: nodus run --branch)
 //   nodus run SCENARIO.yaml --out DIR --resume
 //                                         continue an interrupted run from its newest checkpoint in DIR
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
@@ -13,16 +13,21 @@
 // converged steps are kept in DIR) or was stopped by --stop-after-steps.
 
 #include <algorithm>
-#include <atomic>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <exception>
 #include <filesystem>
+#include <map>
 #include <optional>
 #include <string>
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include <spawn.h>
+#include <sys/wait.h>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -42,6 +47,8 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
+extern char** environ;
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -57,6 +64,8 @@ struct RunRequest {
   bool resume = false;
   int stop_after_steps = 0;  ///< for tests: stop as if killed after this many converged steps (0: never)
   int jobs = 1;              ///< branches run side by side, at most
+  std::string branch;        ///< --branch: run only this branch (the main run has reached its `from` stage)
+  bool verbose = false;
 };
 
 /// The output writers of one run (the main run, or a branch) into `dir`.
@@ -121,9 +130,8 @@ struct BranchStart {
 /// The message of a run stopped by --stop-after-steps.
 void stopped_as_asked(const RunRequest& request, const nodus::simulation::Simulation& sim) {
   spdlog::error(
-      "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; continue "
-      "it "
-      "with --resume",
+      "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; "
+      "continue it with --resume",
       request.stop_after_steps, sim.time());
 }
 
@@ -134,36 +142,51 @@ struct BranchRun {
   int new_steps = 0;         ///< steps computed here (not read back from a checkpoint)
 };
 
-/// Runs branch `b` of `main_scenario` into DIR/branches/NAME from where `start` says, or reads back its
-/// outcome if it had finished. `steps_left` > 0 stops it, as if killed, after that many converged steps.
-/// Branches share nothing but the main run's checkpoint they read, so several may run at once.
-BranchRun run_branch(const RunRequest& request, const nodus::scenario::Scenario& main_scenario, std::size_t b,
-                     const BranchStart& start, int steps_left) {
+fs::path branch_dir(const RunRequest& request, const nodus::scenario::BranchSpec& branch) {
+  return request.out / "branches" / branch.name;
+}
+
+/// Branch `b`'s outcome as far as it is known without running it: its name, start and friction; if it has
+/// finished (its summary.json exists), how it ended; if its start checkpoint is missing (the main run did not
+/// reach its `from` stage), why it is not run. `runnable` says whether it is left to run.
+BranchRun settled_branch(const RunRequest& request, const nodus::scenario::Scenario& main_scenario,
+                         std::size_t b, const BranchStart& start, bool& runnable) {
   const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
-  nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
-  const fs::path dir = request.out / "branches" / branch.name;
   BranchRun run;
   nodus::output::BranchOutcome& outcome = run.outcome;
   outcome.name = branch.name;
   outcome.from = main_scenario.stages.at(static_cast<std::size_t>(branch.from)).name;
-  outcome.friction = branch_scenario.contact.friction;
+  outcome.friction = nodus::scenario::branch_scenario(main_scenario, b).contact.friction;
   outcome.folder = "branches/" + branch.name;
+  runnable = false;
   if (start.finished) {
-    const nodus::output::SummaryData done = nodus::output::read_summary(dir / "summary.json");
+    const nodus::output::SummaryData done =
+        nodus::output::read_summary(branch_dir(request, branch) / "summary.json");
     outcome.converged = done.converged;
     outcome.failure = done.failure;
     outcome.steps = done.steps;
     outcome.final_time = done.final_time;
-    return run;
-  }
-  const fs::path from =
-      start.own ? start.own->path : branch_start_checkpoint(request.out, main_scenario, branch);
-  if (!fs::exists(from)) {
+  } else if (!start.own && !fs::exists(branch_start_checkpoint(request.out, main_scenario, branch))) {
     outcome.failure = fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
     spdlog::error("branch '{}' {}", branch.name, outcome.failure);
-    return run;
+  } else {
+    runnable = true;
   }
-  nodus::simulation::Simulation branch_sim(std::move(branch_scenario));
+  return run;
+}
+
+/// Runs branch `b` of `main_scenario` into DIR/branches/NAME from where `start` says, or reads back its
+/// outcome if it had finished. `steps_left` > 0 stops it, as if killed, after that many converged steps.
+BranchRun run_branch(const RunRequest& request, const nodus::scenario::Scenario& main_scenario, std::size_t b,
+                     const BranchStart& start, int steps_left) {
+  bool runnable = false;
+  BranchRun run = settled_branch(request, main_scenario, b, start, runnable);
+  if (!runnable) return run;
+  const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
+  nodus::output::BranchOutcome& outcome = run.outcome;
+  const fs::path from =
+      start.own ? start.own->path : branch_start_checkpoint(request.out, main_scenario, branch);
+  nodus::simulation::Simulation branch_sim(nodus::scenario::branch_scenario(main_scenario, b));
   nodus::simulation::SimulationState state = nodus::output::read_checkpoint(from, branch_sim.scenario());
   if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
     throw std::runtime_error(
@@ -172,7 +195,8 @@ BranchRun run_branch(const RunRequest& request, const nodus::scenario::Scenario&
                from.string());
   branch_sim.restore(std::move(state), start.own ? nodus::simulation::StartKind::resumed
                                                  : nodus::simulation::StartKind::branched);
-  RunOutputs branch_outputs(dir, branch_sim.scenario(), request.quiet, true, "branch " + branch.name + ": ");
+  RunOutputs branch_outputs(branch_dir(request, branch), branch_sim.scenario(), request.quiet, true,
+                            "branch " + branch.name + ": ");
   const nodus::simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), {steps_left});
   run.new_steps = summary.new_steps;
   if (summary.interrupted) {
@@ -185,23 +209,114 @@ BranchRun run_branch(const RunRequest& request, const nodus::scenario::Scenario&
   outcome.steps = summary.steps;
   outcome.final_time = branch_sim.time();
   spdlog::info("branch '{}': {} steps, {} Newton iterations, {:.2f} s; results in {}", branch.name,
-               summary.steps, summary.newton_iterations, summary.wall_seconds, dir.string());
+               summary.steps, summary.newton_iterations, summary.wall_seconds,
+               branch_dir(request, branch).string());
   if (!summary.converged)
     spdlog::error("branch '{}' stopped: {}; its last converged state is kept in {}", branch.name,
-                  summary.failure, dir.string());
+                  summary.failure, branch_dir(request, branch).string());
   return run;
+}
+
+/// `nodus run --branch NAME`: only that branch, from the main run's checkpoint at the end of its `from` stage
+/// (with --resume: from its own newest checkpoint, or nothing if it has finished). Exit status as for a run.
+int run_one_branch(const RunRequest& request, const nodus::scenario::Scenario& main_scenario) {
+  const auto& branches = main_scenario.branches;
+  const auto found =
+      std::find_if(branches.begin(), branches.end(),
+                   [&](const nodus::scenario::BranchSpec& b) { return b.name == request.branch; });
+  if (found == branches.end()) {
+    std::string names;
+    for (const nodus::scenario::BranchSpec& b : branches) names += (names.empty() ? "" : " | ") + b.name;
+    throw nodus::scenario::ScenarioError(
+        fmt::format("{}: --branch: expected the name of a branch of the scenario ({}), got {}",
+                    request.scenario_path, names.empty() ? "it has none" : names, request.branch));
+  }
+  const auto b = static_cast<std::size_t>(found - branches.begin());
+  const fs::path dir = branch_dir(request, *found);
+  BranchStart start;
+  if (request.resume) {
+    start.finished = fs::exists(dir / "summary.json");
+    if (!start.finished) start.own = nodus::output::newest_checkpoint(dir / "checkpoints");
+  } else {
+    fs::remove(dir / "summary.json");
+    nodus::output::remove_checkpoints(dir / "checkpoints");
+  }
+  const BranchRun run = run_branch(request, main_scenario, b, start, request.stop_after_steps);
+  return !run.interrupted && run.outcome.converged ? 0 : kNotConverged;
+}
+
+/// Runs the branches listed in `todo` side by side, each in its own process (`nodus run --branch NAME`), at
+/// most `jobs` at a time, and fills in their outcomes from the summary.json each writes. A process of its own
+/// computes a branch exactly as the main process would after the main run, whatever runs beside it; threads
+/// would not (the sparse solvers' round-off depends on how the memory of concurrent threads is laid out).
+void run_branch_processes(const RunRequest& request, const nodus::scenario::Scenario& main_scenario,
+                          const std::vector<std::size_t>& todo, const std::vector<BranchStart>& starts,
+                          std::size_t jobs, std::vector<BranchRun>& runs) {
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  const auto finish = [&](pid_t pid, int status) {
+    const std::size_t b = running.at(pid);
+    running.erase(pid);
+    const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
+    nodus::output::BranchOutcome& outcome = runs[b].outcome;
+    const fs::path summary = branch_dir(request, branch) / "summary.json";
+    if (fs::exists(summary)) {
+      const nodus::output::SummaryData done = nodus::output::read_summary(summary);
+      outcome.converged = done.converged;
+      outcome.failure = done.failure;
+      outcome.steps = done.steps;
+      outcome.final_time = done.final_time;
+    } else {
+      outcome.failure = WIFEXITED(status)
+                            ? fmt::format("its process exited with status {}", WEXITSTATUS(status))
+                            : fmt::format("its process was killed by signal {}", WTERMSIG(status));
+      spdlog::error("branch '{}': {}", branch.name, outcome.failure);
+    }
+  };
+  while (next < todo.size() || !running.empty()) {
+    if (next < todo.size() && running.size() < jobs) {
+      const std::size_t b = todo[next++];
+      std::vector<std::string> args = {"nodus",
+                                       "run",
+                                       request.scenario_path,
+                                       "--out",
+                                       request.out.string(),
+                                       "--branch",
+                                       main_scenario.branches[b].name,
+                                       "--jobs",
+                                       "1"};
+      if (starts[b].own) args.emplace_back("--resume");
+      if (request.quiet) args.emplace_back("--quiet");
+      if (request.verbose) args.emplace_back("--verbose");
+      std::vector<char*> argv;
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      pid_t pid = 0;
+      const int error = posix_spawn(&pid, "/proc/self/exe", nullptr, nullptr, argv.data(), environ);
+      if (error != 0)
+        throw std::runtime_error(fmt::format("could not start the process of branch '{}': {}",
+                                             main_scenario.branches[b].name, std::strerror(error)));
+      running[pid] = b;
+      continue;
+    }
+    int status = 0;
+    const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0)
+      throw std::runtime_error(fmt::format("waiting for the branch processes: {}", std::strerror(errno)));
+    if (running.count(pid)) finish(pid, status);
+  }
 }
 
 int run(const RunRequest& request) {
   nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(request.scenario_path);
-  if (!request.quiet)
+  if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, nodus::scenario::describe(scenario));
   // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
   // in the stages or in a branch); it happens before anything is written.
   nodus::simulation::Simulation sim(std::move(scenario));
   const nodus::scenario::Scenario& main_scenario = sim.scenario();
   const fs::path& out = request.out;
-  const auto branch_dir = [&](const nodus::scenario::BranchSpec& b) { return out / "branches" / b.name; };
+  if (!request.branch.empty()) return run_one_branch(request, main_scenario);
 
   // With --resume, everything that is read back is read and checked before anything is written.
   std::optional<nodus::simulation::SimulationState> resumed;
@@ -225,9 +340,9 @@ int run(const RunRequest& request) {
       const nodus::scenario::BranchSpec& branch = main_scenario.branches[b];
       const nodus::scenario::Scenario branch_scenario = nodus::scenario::branch_scenario(main_scenario, b);
       BranchStart& start = branch_starts[b];
-      start.finished = fs::exists(branch_dir(branch) / "summary.json");
+      start.finished = fs::exists(branch_dir(request, branch) / "summary.json");
       if (start.finished) continue;
-      start.own = nodus::output::newest_checkpoint(branch_dir(branch) / "checkpoints");
+      start.own = nodus::output::newest_checkpoint(branch_dir(request, branch) / "checkpoints");
       const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
       if (fs::exists(from)) nodus::output::read_checkpoint(from, branch_scenario);  // checks it
     }
@@ -240,8 +355,8 @@ int run(const RunRequest& request) {
   } else {
     // Branch results of an earlier run must not pass for finished or resumable ones.
     for (const nodus::scenario::BranchSpec& branch : main_scenario.branches) {
-      fs::remove(branch_dir(branch) / "summary.json");
-      nodus::output::remove_checkpoints(branch_dir(branch) / "checkpoints");
+      fs::remove(branch_dir(request, branch) / "summary.json");
+      nodus::output::remove_checkpoints(branch_dir(request, branch) / "checkpoints");
     }
   }
   int steps_left = request.stop_after_steps;
@@ -262,7 +377,8 @@ int run(const RunRequest& request) {
 
   if (main_scenario.branches.empty()) return all_converged ? 0 : kNotConverged;
 
-  // The branches, side by side on up to `jobs` threads; one at a time when a step count is to stop the run.
+  // The branches, side by side in up to `jobs` processes; one at a time, in this process, when a step count
+  // is to stop the run.
   const std::size_t count = main_scenario.branches.size();
   const std::size_t jobs =
       request.stop_after_steps > 0 ? 1 : std::min(count, static_cast<std::size_t>(request.jobs));
@@ -274,23 +390,16 @@ int run(const RunRequest& request) {
       if (steps_left > 0) steps_left -= runs[b].new_steps;
     }
   } else {
-    spdlog::info("{} branches, {} at a time", count, jobs);
-    std::atomic<std::size_t> next{0};
-    std::vector<std::exception_ptr> errors(count);
-    const auto work = [&] {
-      for (std::size_t b = next++; b < count; b = next++) {
-        try {
-          runs[b] = run_branch(request, main_scenario, b, branch_starts[b], 0);
-        } catch (...) {
-          errors[b] = std::current_exception();
-        }
-      }
-    };
-    std::vector<std::thread> threads;
-    for (std::size_t j = 0; j < jobs; ++j) threads.emplace_back(work);
-    for (std::thread& t : threads) t.join();
-    for (const std::exception_ptr& e : errors)
-      if (e) std::rethrow_exception(e);
+    std::vector<std::size_t> todo;
+    for (std::size_t b = 0; b < count; ++b) {
+      bool runnable = false;
+      runs[b] = settled_branch(request, main_scenario, b, branch_starts[b], runnable);
+      if (runnable) todo.push_back(b);
+    }
+    if (!todo.empty())
+      spdlog::info("{} branches to run, {} at a time, each in its own process", todo.size(),
+                   std::min(jobs, todo.size()));
+    run_branch_processes(request, main_scenario, todo, branch_starts, jobs, runs);
   }
   std::vector<nodus::output::BranchOutcome> outcomes;
   for (BranchRun& r : runs) {
@@ -336,13 +445,17 @@ int main(int argc, char** argv) {
   run_cmd->add_option("--out,-o", request.out, "output directory (created if missing)")->required();
   run_cmd->add_flag("--quiet,-q", request.quiet, "no settings echo and no progress lines");
   run_cmd->add_flag("--verbose,-v", verbose, "log every Newton iteration");
+  run_cmd->add_option(
+      "--branch", request.branch,
+      "run only this branch, from the main run's checkpoint at the end of its `from` stage (with "
+      "--resume: from its own newest checkpoint); the main stages must have been run");
   run_cmd->add_flag("--resume", request.resume,
                     "continue the interrupted run in the output directory from its newest checkpoint");
   request.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   run_cmd
       ->add_option("--jobs,-j", request.jobs,
-                   "branches run side by side, at most (default: the number of hardware threads); each is "
-                   "computed as it would be alone, so the results do not depend on it")
+                   "branches run side by side, each in its own process, at most (default: the number of "
+                   "hardware threads); the results do not depend on it")
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
   run_cmd
@@ -377,6 +490,7 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kBadInput;
   }
   if (verbose) spdlog::set_level(spdlog::level::debug);
+  request.verbose = verbose;
 
   try {
     if (app.got_subcommand("keys")) {

@@ -1,8 +1,8 @@
 #!/usr/bin/env python3
 """Writes the loading program of the monofilament overhand knot (examples/monofilament_knot.yaml).
 
-Durville (2012), Sect. 7.2: a straight rod is tied into an overhand knot by moving its ends, tightened by
-pulling one end, and released for three friction coefficients.
+Durville (2012), Sect. 7.2: a straight rod is tied into an overhand knot by moving its ends while two
+clamping beams hold its loop, tightened by pulling one end, and released for three friction coefficients.
 
 The rod ends are moved along paths given by a few waypoints (position and axis direction of the end
 section). Between waypoints the position is interpolated linearly and the axis direction along the great

@@ -243,7 +243,9 @@ TEST(Branches, SideBySideAsOneAtATime) {
     const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --jobs " +
                                std::to_string(jobs));
     EXPECT_EQ(r.status, 0) << r.err;
-    EXPECT_EQ(r.err.find("2 branches, 2 at a time") != std::string::npos, jobs == 2) << r.err;
+    EXPECT_EQ(r.err.find("2 branches to run, 2 at a time, each in its own process") != std::string::npos,
+              jobs == 2)
+        << r.err;
     return out;
   };
   const fs::path one = run_with(1), two = run_with(2);
@@ -254,6 +256,30 @@ TEST(Branches, SideBySideAsOneAtATime) {
       run_nodus("run " + scenario.string() + " --out " + (scratch() / "jobs_0").string() + " -q --jobs 0");
   EXPECT_EQ(zero.status, 2) << zero.err;
   EXPECT_FALSE(fs::exists(scratch() / "jobs_0"));
+}
+
+TEST(Branches, OneBranchOnItsOwn) {
+  // `--branch NAME` runs that branch alone from the main run's checkpoint: removed and run again, its files
+  // are those it had. An unknown name is refused in one line.
+  const fs::path scenario = write("branches_one.yaml", kDrag + kBranches);
+  const fs::path reference = reference_run(scenario, "branches_one");
+  const fs::path out = scratch() / "branches_one_again";
+  fs::remove_all(out);
+  fs::copy(reference, out, fs::copy_options::recursive);
+  fs::remove_all(out / "branches" / "mu_0.1");
+  const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --branch mu_0.1");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("branch 'mu_0.1': starting from " + (out / "checkpoints" / "001_drag.nodus-state").string()),
+      std::string::npos)
+      << r.err;
+  expect_same_results(reference, out);
+
+  const Result bad = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --branch nope");
+  EXPECT_EQ(bad.status, 2);
+  EXPECT_EQ(bad.err,
+            "nodus: " + scenario.string() +
+                ": --branch: expected the name of a branch of the scenario (same | mu_0.1), got nope\n");
 }
 
 TEST(Branches, ResumeInsideABranch) {
