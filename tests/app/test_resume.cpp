@@ -258,6 +258,26 @@ TEST(Branches, SideBySideAsOneAtATime) {
   EXPECT_FALSE(fs::exists(scratch() / "jobs_0"));
 }
 
+TEST(Branches, ResumedSideBySide) {
+  // Stopped at the end of same's back (its own checkpoint), then resumed with the branches side by side: the
+  // process of `same` resumes from its checkpoint, that of `mu_0.1` starts from the main run's, and the files
+  // are those of the run never stopped.
+  const fs::path scenario = write("branches_resume_jobs.yaml", kDrag + kBranches);
+  const fs::path reference = reference_run(scenario, "branches_resume_jobs");
+  const fs::path out = scratch() / "branches_resume_jobs_out";
+  fs::remove_all(out);
+  const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+  EXPECT_EQ(run_nodus(run + " --stop-after-steps 14").status, 3);
+  const Result r = run_nodus(run + " --resume --jobs 2");
+  EXPECT_EQ(r.status, 0) << r.err;
+  EXPECT_NE(
+      r.err.find("branch 'same': resuming from " + (out / "branches" / "same" / "checkpoints").string()),
+      std::string::npos)
+      << r.err;
+  EXPECT_NE(r.err.find("branch 'mu_0.1': starting from"), std::string::npos) << r.err;
+  expect_same_results(reference, out);
+}
+
 TEST(Branches, OneBranchOnItsOwn) {
   // `--branch NAME` runs that branch alone from the main run's checkpoint: removed and run again, its files
   // are those it had. An unknown name is refused in one line.
