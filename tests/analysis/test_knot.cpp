@@ -203,6 +203,21 @@ TEST(KnotInvariant, TorusKnotsOfTypeOneAreUnknots) {
   }
 }
 
+TEST(KnotInvariant, SpikesThatRetraceThemselvesAreIgnored) {
+  // A beam element folded back on itself leaves a spike p, q, p in the node polyline, at an end or inside. A
+  // spike bounds a triangle of zero area, so the knot type is that of the curve without it; left in, the
+  // spike at the end makes every projection degenerate (its closure runs back along it).
+  Curve curve = open_knot(trefoil(), 400, 50, 30.0);
+  const Vec3 end = curve.back(), before = curve[curve.size() - 2];
+  curve.push_back(end + 0.5 * (end - before));  // out along the curve ...
+  curve.push_back(end + 1e-9 * Vec3::UnitX());  // ... and back onto the end, to 1e-9
+  const std::size_t middle = curve.size() / 2;
+  const Vec3 m = curve[middle];
+  curve.insert(curve.begin() + static_cast<std::ptrdiff_t>(middle) + 1, {m + Vec3(0.0, 0.0, 0.5), m});
+  const KnotInvariant k = knot_invariant(curve);
+  EXPECT_TRUE(k.is_trefoil()) << k.to_string();
+}
+
 TEST(KnotInvariant, OpenOverhandKnotIsATrefoil) {
   const Curve curve = open_knot(trefoil(), 400, 50, 30.0);
   const KnotInvariant k = knot_invariant(curve);

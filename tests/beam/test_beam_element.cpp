@@ -1,8 +1,13 @@
 // Internal force and tangent of the 9-dof beam element against central finite differences, on random deformed
-// states of randomly placed elements; rigid motions give no force.
+// states of randomly placed elements (fold stabilisation included); rigid motions give no force. The fold of
+// a 2-point element: free of strain at its Gauss points, so of energy 0 without the stabilisation, and of the
+// stabilisation's closed-form energy with it; on a circular arc the stabilisation is the documented small
+// fraction of the bending energy.
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+#include <numbers>
 #include <random>
 
 #include <Eigen/Geometry>
@@ -28,6 +33,7 @@ RandomElement random_deformed_element(std::mt19937& rng, double amplitude) {
                      d1,  ElasticConstants{4000.0, 0.3}, 0.3 + 0.7 * (u(rng) + 1) / 2};
   const Beam beam(def, 0);
   RandomElement r{ElementVector(), beam.element_properties(3)};
+  r.props.fold_stiffness = 0.5 + 0.5 * (u(rng) + 1);
   for (int i = 0; i < kElementNodes; ++i) r.x.segment<kNodeDofs>(kNodeDofs * i) = beam.reference_node(i);
   // Large deformation: perturb positions relative to the element length, directors by O(amplitude).
   for (int i = 0; i < kElementDofs; ++i) r.x[i] += amplitude * u(rng) * ((i % 9) < 3 ? def.length : 1.0);
@@ -104,6 +110,88 @@ TEST(BeamElement, RigidMotionGivesNoForce) {
     const double ea = e.props.stiffness(kE33, kE33);
     EXPECT_LT(f.cwiseAbs().maxCoeff(), 1e-12 * ea);
     EXPECT_LT(element_energy(moved, e.props), 1e-14 * ea * e.props.length);
+  }
+}
+
+/// A straight element of length h along x (directors y, z), E = 4000 MPa, R = 0.1 mm, 2 Gauss points.
+struct StraightElement {
+  double h = 0.0667;
+  Beam beam{BeamDefinition{"b", 0.0667, 0.1, 1, Vec3::Zero(), Vec3::UnitX(), Vec3::UnitY(),
+                           ElasticConstants{4000.0, 0.3}, 1.0},
+            0};
+  ElementVector x() const {
+    ElementVector x;
+    for (int i = 0; i < kElementNodes; ++i) x.segment<kNodeDofs>(kNodeDofs * i) = beam.reference_node(i);
+    return x;
+  }
+};
+
+/// Axial strain (|r'|^2 - 1) / 2 of the centreline at xi, from the quadratic shape functions N1 = xi (xi - 1)
+/// / 2, N2 = 1 - xi^2, N3 = xi (xi + 1) / 2.
+double axial_strain(const ElementVector& x, double h, double xi) {
+  const Vec3 dr_dxi =
+      (xi - 0.5) * x.segment<3>(0) - 2.0 * xi * x.segment<3>(9) + (xi + 0.5) * x.segment<3>(18);
+  return 0.5 * ((2.0 / h) * dr_dxi).squaredNorm() - 0.5;
+}
+
+TEST(BeamElementFold, CostsNothingWithTwoGaussPointsAndTheStabilisationWithIt) {
+  const StraightElement s;
+  const double h = s.h;
+  // The fold: end nodes together at the origin, middle node at a = sqrt(3) h / 4 along x, directors as in the
+  // reference. r' = -(4 a / h) xi e_x: of unit length at xi = -+1/sqrt(3), along +x then -x, normal to the
+  // directors; the directors do not vary. No strain at either Gauss point.
+  ElementVector fold = s.x();
+  const double a = std::sqrt(3.0) * h / 4.0;
+  fold.segment<3>(0) = Vec3::Zero();
+  fold.segment<3>(9) = Vec3(a, 0.0, 0.0);
+  fold.segment<3>(18) = Vec3::Zero();
+  const double gp = 1.0 / std::sqrt(3.0);
+  EXPECT_NEAR(axial_strain(fold, h, gp), 0.0, 1e-14);
+  EXPECT_NEAR(axial_strain(fold, h, -gp), 0.0, 1e-14);
+  ElementProperties props = s.beam.element_properties(2);
+  const double ea = props.stiffness(kE33, kE33);
+  EXPECT_LT(element_energy(fold, props), 1e-14 * ea * h);  // a zero-energy mode of the 2-point element
+
+  // With the stabilisation: beta (h/2) (D33/2) d^2 (D33 the section's axial stiffness), d the axial strain at
+  // the centre less the mean at the Gauss points, here -1/2 - 0.
+  props.fold_stiffness = 0.7;
+  const double d =
+      axial_strain(fold, h, 0.0) - 0.5 * (axial_strain(fold, h, gp) + axial_strain(fold, h, -gp));
+  EXPECT_NEAR(d, -0.5, 1e-14);
+  const double expected = 0.7 * (h / 2) * (ea / 2) * d * d;
+  EXPECT_NEAR(element_energy(fold, props), expected, 1e-12 * expected);
+  // Three Gauss points see the fold as well (for comparison: they lock in bending, docs/model.md).
+  EXPECT_GT(element_energy(fold, s.beam.element_properties(3)), 0.1 * expected / 0.7);
+
+  // Uniform stretch: d = 0, nothing added.
+  ElementVector stretched = s.x();
+  for (int i = 0; i < kElementNodes; ++i) stretched.segment<3>(kNodeDofs * i) *= 1.01;
+  EXPECT_NEAR(fold_energy(stretched, props), 0.0, 1e-16 * ea * h);
+}
+
+TEST(BeamElementFold, SmallOnASmoothBend) {
+  // A circular arc of curvature kappa through the three nodes, directors turning with it (pure bending):
+  // bending energy E I kappa^2 h / 2, stabilisation beta (h/2) (D33/2) (kappa^2 h^2 / 24)^2 to leading order
+  // (D33 = A (lambda + 2 mu), the section's axial stiffness), a fraction beta (kappa h)^2 (h/R)^2 D33 / (288
+  // E A) of it.
+  const StraightElement s;
+  const double h = s.h, radius = 0.1;
+  for (const double kappa : {0.5, 2.0, 8.0}) {
+    ElementVector arc = s.x();
+    for (int i = 0; i < kElementNodes; ++i) {
+      const double angle = kappa * (i - 1) * h / 2;
+      arc.segment<3>(kNodeDofs * i) = Vec3(std::sin(angle), 1.0 - std::cos(angle), 0.0) / kappa;
+      arc.segment<3>(kNodeDofs * i + 3) = Vec3(-std::sin(angle), std::cos(angle), 0.0);  // g1
+      arc.segment<3>(kNodeDofs * i + 6) = Vec3::UnitZ();                                 // g2
+    }
+    ElementProperties props = s.beam.element_properties(2);
+    props.fold_stiffness = 1.0;
+    const double fraction = fold_energy(arc, props) / element_energy(arc, s.beam.element_properties(2));
+    const double axial = props.stiffness(kE33, kE33) / (4000.0 * std::numbers::pi * radius * radius);
+    const double predicted = (kappa * h) * (kappa * h) * (h / radius) * (h / radius) / 288.0 * axial;
+    // The leading order, close for kappa h <= 0.14 and an upper bound beyond (kappa h = 0.53: 0.90 of it).
+    EXPECT_LE(fraction, predicted) << "kappa " << kappa;
+    if (kappa * h <= 0.14) EXPECT_NEAR(fraction, predicted, 0.01 * predicted) << "kappa " << kappa;
   }
 }
 

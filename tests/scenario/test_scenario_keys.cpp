@@ -105,6 +105,7 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   EXPECT_EQ(number(scenario_key("solver.easy_iterations").default_value), solver.easy_iterations);
   EXPECT_EQ(scenario_key("solver.line_search").default_value, solver.line_search ? "true" : "false");
   EXPECT_EQ(number(scenario_key("solver.gauss_points").default_value), solver.gauss_points);
+  EXPECT_EQ(number(scenario_key("solver.fold_stiffness").default_value), solver.fold_stiffness);
 
   const OutputSettings output;
   EXPECT_EQ(number(scenario_key("output.vtk_every").default_value), output.vtk_every);

@@ -214,6 +214,7 @@ solver:
   easy_iterations: 2
   line_search: false
   gauss_points: 3
+  fold_stiffness: 0.5
 output:
   vtk_every: 0
   tube_sides: 16
@@ -353,6 +354,7 @@ TEST(ScenarioReader, FullScenarioResolves) {
   EXPECT_EQ(s.solver.easy_iterations, 2);
   EXPECT_FALSE(s.solver.line_search);
   EXPECT_EQ(s.solver.gauss_points, 3);
+  EXPECT_EQ(s.solver.fold_stiffness, 0.5);
   EXPECT_EQ(s.output.vtk_every, 0);
   EXPECT_EQ(s.output.tube_sides, 16);
   EXPECT_DOUBLE_EQ(s.output.progress_seconds, 0.0);
@@ -382,6 +384,7 @@ TEST(ScenarioReader, DefaultsOfOptionalSections) {
   EXPECT_EQ(s.solver.max_newton_iterations, solver_defaults.max_newton_iterations);
   EXPECT_EQ(s.solver.residual_tolerance, solver_defaults.residual_tolerance);
   EXPECT_EQ(s.solver.gauss_points, solver_defaults.gauss_points);
+  EXPECT_EQ(s.solver.fold_stiffness, solver_defaults.fold_stiffness);
   EXPECT_EQ(s.output.vtk_every, 1);
   EXPECT_EQ(s.output.tube_sides, 12);
   EXPECT_EQ(s.conditions[2].node, 10);  // integer at
@@ -556,6 +559,7 @@ TEST(ScenarioErrors, Integers) {
   EXPECT_TRUE(fails_at(with_line(kBase, 28, "    steps: ten"), 28, "stages[0].steps"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  gauss_points: 6\n", 35, "solver.gauss_points"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  gauss_points: 0\n", 35, "solver.gauss_points"));
+  EXPECT_TRUE(fails_at(kBase + "solver:\n  fold_stiffness: -1\n", 35, "solver.fold_stiffness"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  max_newton_iterations: 0\n", 35, "solver.max_newton_iterations"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  max_cutbacks: -1\n", 35, "solver.max_cutbacks"));
   EXPECT_TRUE(fails_at(kBase + "solver:\n  easy_iterations: 0\n", 35, "solver.easy_iterations"));
@@ -759,6 +763,7 @@ void expect_same(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.solver.easy_iterations, b.solver.easy_iterations);
   EXPECT_EQ(a.solver.line_search, b.solver.line_search);
   EXPECT_EQ(a.solver.gauss_points, b.solver.gauss_points);
+  EXPECT_EQ(a.solver.fold_stiffness, b.solver.fold_stiffness);
   EXPECT_EQ(a.output.vtk_every, b.output.vtk_every);
   EXPECT_EQ(a.output.tube_sides, b.output.tube_sides);
   EXPECT_EQ(a.output.progress_seconds, b.output.progress_seconds);

@@ -53,6 +53,20 @@ PreparedCurve prepare(const std::vector<Vec3>& curve) {
   PreparedCurve out;
   for (const Vec3& p : curve)
     if (out.points.empty() || (p - out.points.back()).norm() > merge) out.points.push_back(p);
+  // A spike that retraces itself (p[i+2] back on p[i], to 1e-6 of its length) bounds a triangle of (nearly)
+  // zero area, which no other strand can pass: removing p[i+1] and p[i+2] changes nothing to the knot. A beam
+  // element folded back on itself leaves such spikes (docs/model.md); left in, they make every projection
+  // degenerate.
+  for (std::size_t i = 0; i + 2 < out.points.size();) {
+    const double arm = (out.points[i + 1] - out.points[i]).norm();
+    if ((out.points[i + 2] - out.points[i]).norm() <= std::max(merge, 1e-6 * arm)) {
+      out.points.erase(out.points.begin() + static_cast<std::ptrdiff_t>(i) + 1,
+                       out.points.begin() + static_cast<std::ptrdiff_t>(i) + 3);
+      if (i > 0) --i;
+    } else {
+      ++i;
+    }
+  }
   if (out.points.size() < 2) throw std::invalid_argument("knot_invariant: fewer than two distinct vertices");
   if (out.points.size() > 3 && (out.points.back() - out.points.front()).norm() <= merge) {
     out.points.pop_back();

@@ -21,10 +21,22 @@ using ElementMatrix = Eigen::Matrix<double, kElementDofs, kElementDofs>;
 
 /// Constant data of one element: its reference length and section stiffness.
 struct ElementProperties {
-  double length;            ///< reference length h [mm]
-  SectionMatrix stiffness;  ///< D of section.hpp
-  int gauss_points = 2;     ///< along the axis
+  double length;                ///< reference length h [mm]
+  SectionMatrix stiffness;      ///< D of section.hpp
+  int gauss_points = 2;         ///< along the axis
+  double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (fold_energy), >= 0 [-]
 };
+
+/// The energy that stabilises the fold of a reduced-integrated element [N mm]. With 2 Gauss points an element
+/// can fold back on itself at no cost: its middle node out, its end nodes together, the tangent r' of unit
+/// length and normal to the directors at both Gauss points (no strain there) but reversed between them. The
+/// fold shows in the axial strain e = (|r'|^2 - 1)/2 at the element's centre, which the 2-point rule does not
+/// see: e(0) minus the mean of e at the Gauss points is d = -|b|^2 / 6, with b = dr'/dxi = (2/h)(r1 - 2 r2 +
+/// r3) (r' is linear in xi). The energy is beta (h/2) (D33/2) d^2, D33 = D(E33, E33) the section's axial
+/// stiffness: zero for any uniform stretch, quartic in the second difference of the nodes. It adds to a
+/// smooth bend of curvature kappa a fraction beta (kappa h)^2 (h/R)^2 D33 / (288 f E A) of its energy (f the
+/// bending factor), and a complete fold costs it beta (h/2) (D33/2) / 4 (docs/model.md).
+double fold_energy(const ElementVector& x_e, const ElementProperties& props);
 
 /// The kinematic vector y = (r', g1, g2, g1', g2') at xi in [-1, 1] of an element of reference length h.
 KinematicVector element_kinematics(const ElementVector& x_e, double length, double xi);

@@ -20,7 +20,8 @@ inline constexpr int kDofsPerNode = beam::kNodeDofs;
 
 class Model {
  public:
-  explicit Model(int gauss_points = 2) : gauss_points_(gauss_points) {}
+  explicit Model(int gauss_points = 2, double fold_stiffness = 0.0)
+      : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness) {}
 
   /// Adds a beam; returns its index.
   int add_beam(const beam::BeamDefinition& definition);
@@ -57,6 +58,7 @@ class Model {
   };
 
   int gauss_points_;
+  double fold_stiffness_;
   std::vector<beam::Beam> beams_;
   std::vector<beam::ElementProperties> properties_;  ///< one per beam
   std::vector<Element> elements_;

@@ -127,6 +127,7 @@ constexpr std::array kKeys{
          "a step converged in at most this many iterations lets the next step grow"},
   KeyDoc{"solver.line_search", "bool", "", "false", "", "damp Newton updates by a line search on the energy slope (off: faster on every verification case, docs/model.md)"},
   KeyDoc{"solver.gauss_points", "integer", "", "2", "in 1..5", "Gauss points per element along the axis (2: reduced integration, free of locking; docs/model.md)"},
+  KeyDoc{"solver.fold_stiffness", "number", "", "0", ">= 0", "beta of the energy that keeps a 2-point element from folding back on itself at no cost; 0: none (docs/model.md)"},
 
   KeyDoc{"output", "map", "", "{}", "", "output settings"},
   KeyDoc{"output.vtk_every", "integer", "", "1", ">= 0",

@@ -880,6 +880,7 @@ SolverSettings read_solver(const Reader& reader, const MapView& top) {
   }
   const auto at_least = [](int minimum) { return [minimum](int v) { return v >= minimum; }; };
   const auto positive = [](double v) { return v > 0.0; };
+  const auto non_negative = [](double v) { return v >= 0.0; };
   if (const auto value = map.get("max_newton_iterations")) {
     solver.max_newton_iterations = reader.integer(*value, at_least(1));
   }
@@ -895,6 +896,8 @@ SolverSettings read_solver(const Reader& reader, const MapView& top) {
   if (const auto value = map.get("gauss_points")) {
     solver.gauss_points = reader.integer(*value, [](int v) { return v >= 1 && v <= 5; });
   }
+  if (const auto value = map.get("fold_stiffness"))
+    solver.fold_stiffness = reader.number(*value, non_negative);
   return solver;
 }
 
@@ -1222,6 +1225,7 @@ std::string describe(const Scenario& scenario) {
   line(fmt::format("  easy_iterations: {}", solver.easy_iterations));
   line(fmt::format("  line_search: {}", solver.line_search ? "true" : "false"));
   line(fmt::format("  gauss_points: {}", solver.gauss_points));
+  line(fmt::format("  fold_stiffness: {}", format_number(solver.fold_stiffness)));
 
   const OutputSettings& output = scenario.output;
   line("output:");

@@ -117,6 +117,7 @@ struct SolverSettings {
   int easy_iterations = 4;            ///< a step converged in at most this many iterations lets the next grow
   bool line_search = false;           ///< slower on every verification case so far (docs/model.md)
   int gauss_points = 2;               ///< Gauss points per element along the axis, 1..5
+  double fold_stiffness = 0.0;        ///< beta of the fold stabilisation (beam_element.hpp), >= 0
 };
 
 struct OutputSettings {

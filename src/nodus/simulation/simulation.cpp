@@ -21,7 +21,7 @@ namespace {
 constexpr double kDegree = std::numbers::pi / 180.0;
 
 model::Model build_model(const scenario::Scenario& s) {
-  model::Model model(s.solver.gauss_points);
+  model::Model model(s.solver.gauss_points, s.solver.fold_stiffness);
   for (const scenario::BeamSpec& b : s.beams) {
     const scenario::Material& m = s.materials.at(static_cast<std::size_t>(b.material));
     model.add_beam({b.name, b.length, b.radius, b.elements, b.start, b.direction, b.director1,
