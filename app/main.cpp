@@ -301,6 +301,7 @@ void run_branch_processes(const RunRequest& request, const nodus::scenario::Scen
     }
     int status = 0;
     const pid_t pid = waitpid(-1, &status, 0);
+    if (pid < 0 && errno == EINTR) continue;
     if (pid < 0)
       throw std::runtime_error(fmt::format("waiting for the branch processes: {}", std::strerror(errno)));
     if (running.count(pid)) finish(pid, status);
