@@ -146,6 +146,15 @@ fs::path branch_dir(const RunRequest& request, const nodus::scenario::BranchSpec
   return request.out / "branches" / branch.name;
 }
 
+/// How a finished branch ended, from its summary.json.
+void read_finished(const fs::path& summary, nodus::output::BranchOutcome& outcome) {
+  const nodus::output::SummaryData done = nodus::output::read_summary(summary);
+  outcome.converged = done.converged;
+  outcome.failure = done.failure;
+  outcome.steps = done.steps;
+  outcome.final_time = done.final_time;
+}
+
 /// Branch `b`'s outcome as far as it is known without running it: its name, start and friction; if it has
 /// finished (its summary.json exists), how it ended; if its start checkpoint is missing (the main run did not
 /// reach its `from` stage), why it is not run. `runnable` says whether it is left to run.
@@ -160,12 +169,7 @@ BranchRun settled_branch(const RunRequest& request, const nodus::scenario::Scena
   outcome.folder = "branches/" + branch.name;
   runnable = false;
   if (start.finished) {
-    const nodus::output::SummaryData done =
-        nodus::output::read_summary(branch_dir(request, branch) / "summary.json");
-    outcome.converged = done.converged;
-    outcome.failure = done.failure;
-    outcome.steps = done.steps;
-    outcome.final_time = done.final_time;
+    read_finished(branch_dir(request, branch) / "summary.json", outcome);
   } else if (!start.own && !fs::exists(branch_start_checkpoint(request.out, main_scenario, branch))) {
     outcome.failure = fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
     spdlog::error("branch '{}' {}", branch.name, outcome.failure);
@@ -261,11 +265,7 @@ void run_branch_processes(const RunRequest& request, const nodus::scenario::Scen
     nodus::output::BranchOutcome& outcome = runs[b].outcome;
     const fs::path summary = branch_dir(request, branch) / "summary.json";
     if (fs::exists(summary)) {
-      const nodus::output::SummaryData done = nodus::output::read_summary(summary);
-      outcome.converged = done.converged;
-      outcome.failure = done.failure;
-      outcome.steps = done.steps;
-      outcome.final_time = done.final_time;
+      read_finished(summary, outcome);
     } else {
       outcome.failure = WIFEXITED(status)
                             ? fmt::format("its process exited with status {}", WEXITSTATUS(status))
