@@ -19,7 +19,7 @@ using nodus::bench::kRadius;
 
 namespace {
 
-using nodus::model::kDofsPerNode;
+using nodus::beam::kNodeDofs;
 using nodus::model::Model;
 
 Model make_model(int elements) {
@@ -41,12 +41,12 @@ Eigen::VectorXd deformed_state(const Model& model, double angle, double stretch,
   for (int i = 0; i < beam.num_nodes(); ++i) {
     const double s = beam.abscissa(i);
     const double theta = s / rho;
-    auto q = x.segment<kDofsPerNode>(kDofsPerNode * beam.node(i));
+    auto q = x.segment<kNodeDofs>(kNodeDofs * beam.node(i));
     q.segment<3>(0) = (1.0 + stretch) * rho * Eigen::Vector3d(std::sin(theta), 1.0 - std::cos(theta), 0.0);
     q.segment<3>(3) = Eigen::Vector3d(-std::sin(theta), std::cos(theta), 0.0);
     q.segment<3>(6) = Eigen::Vector3d::UnitZ();
     for (int k = 0; k < 3; ++k) q[k] += 1e-3 * spacing * u(rng);
-    for (int k = 3; k < kDofsPerNode; ++k) q[k] += 1e-3 * u(rng);
+    for (int k = 3; k < kNodeDofs; ++k) q[k] += 1e-3 * u(rng);
   }
   return x;
 }
@@ -55,7 +55,7 @@ Eigen::VectorXd deformed_state(const Model& model, double angle, double stretch,
 std::vector<int> clamp_first_node(const Model& model) {
   std::vector<int> free_index(static_cast<std::size_t>(model.num_dofs()), -1);
   int next = 0;
-  for (int i = kDofsPerNode; i < model.num_dofs(); ++i) free_index[static_cast<std::size_t>(i)] = next++;
+  for (int i = kNodeDofs; i < model.num_dofs(); ++i) free_index[static_cast<std::size_t>(i)] = next++;
   return free_index;
 }
 
@@ -82,7 +82,7 @@ void BM_InternalForce(benchmark::State& state) {
 void BM_InternalForceAndTangent(benchmark::State& state) {
   const Model model = make_model(static_cast<int>(state.range(0)));
   const Eigen::VectorXd x = deformed_state(model, std::numbers::pi / 3, 1e-3, 42);
-  nodus::solver::SparseAssembler assembler(kDofsPerNode, clamp_first_node(model), model.element_nodes());
+  nodus::solver::SparseAssembler assembler(kNodeDofs, clamp_first_node(model), model.element_nodes());
   Eigen::VectorXd f;
   for (auto _ : state) {
     model.internal_force(x, f, &assembler);
@@ -102,7 +102,7 @@ void BM_PatternConstruction(benchmark::State& state) {
   const std::vector<int> free_index = clamp_first_node(model);
   double nnz = 0;
   for (auto _ : state) {
-    nodus::solver::SparseAssembler assembler(kDofsPerNode, free_index, model.element_nodes());
+    nodus::solver::SparseAssembler assembler(kNodeDofs, free_index, model.element_nodes());
     benchmark::DoNotOptimize(assembler.matrix().innerIndexPtr());
     nnz = static_cast<double>(assembler.matrix().nonZeros());
   }

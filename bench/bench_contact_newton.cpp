@@ -22,7 +22,7 @@
 
 namespace {
 
-using nodus::model::kDofsPerNode;
+using nodus::beam::kNodeDofs;
 
 struct Setup {
   nodus::bench::Bundle bundle;

@@ -33,7 +33,7 @@ using nodus::bench::kRadius;
 
 namespace {
 
-using nodus::model::kDofsPerNode;
+using nodus::beam::kNodeDofs;
 using nodus::model::Model;
 using nodus::solver::LinearSolverKind;
 using nodus::solver::SparseMatrix;
@@ -52,7 +52,7 @@ Eigen::VectorXd arc_state(const Model& model, double angle, double stretch) {
   Eigen::VectorXd x = model.reference();
   for (int i = 0; i < beam.num_nodes(); ++i) {
     const double theta = beam.abscissa(i) / rho;
-    auto q = x.segment<kDofsPerNode>(kDofsPerNode * beam.node(i));
+    auto q = x.segment<kNodeDofs>(kNodeDofs * beam.node(i));
     q.segment<3>(0) = (1.0 + stretch) * rho * Eigen::Vector3d(std::sin(theta), 1.0 - std::cos(theta), 0.0);
     q.segment<3>(3) = Eigen::Vector3d(-std::sin(theta), std::cos(theta), 0.0);
     q.segment<3>(6) = Eigen::Vector3d::UnitZ();
@@ -62,7 +62,7 @@ Eigen::VectorXd arc_state(const Model& model, double angle, double stretch) {
 
 Eigen::VectorXd compressed_state(const Model& model, double strain) {
   Eigen::VectorXd x = model.reference();
-  for (int n = 0; n < model.num_nodes(); ++n) x[kDofsPerNode * n] *= 1.0 + strain;  // start is the origin
+  for (int n = 0; n < model.num_nodes(); ++n) x[kNodeDofs * n] *= 1.0 + strain;  // start is the origin
   return x;
 }
 
@@ -85,10 +85,10 @@ const System& system_for(Case c, int elements) {
   int next = 0;
   for (int n = 0; n < model.num_nodes(); ++n) {
     const bool clamped = n == 0 || (c == Case::indefinite && n == last);
-    for (int k = 0; k < kDofsPerNode; ++k)
-      if (!clamped) free_index[static_cast<std::size_t>(kDofsPerNode * n + k)] = next++;
+    for (int k = 0; k < kNodeDofs; ++k)
+      if (!clamped) free_index[static_cast<std::size_t>(kNodeDofs * n + k)] = next++;
   }
-  nodus::solver::SparseAssembler assembler(kDofsPerNode, std::move(free_index), model.element_nodes());
+  nodus::solver::SparseAssembler assembler(kNodeDofs, std::move(free_index), model.element_nodes());
   const Eigen::VectorXd x =
       c == Case::pd ? arc_state(model, std::numbers::pi / 3, 1e-3) : compressed_state(model, -1e-3);
   Eigen::VectorXd f;

@@ -27,7 +27,7 @@ using nodus::bench::kRadius;
 
 namespace {
 
-using nodus::model::kDofsPerNode;
+using nodus::beam::kNodeDofs;
 using nodus::model::Model;
 using nodus::solver::LinearSolverKind;
 
@@ -57,13 +57,13 @@ struct Setup {
     Eigen::VectorXd x = model.reference();
     for (int i = 0; i < beam.num_nodes(); ++i) {
       const double theta = beam.abscissa(i) / rho;
-      auto q = x.segment<kDofsPerNode>(kDofsPerNode * beam.node(i));
+      auto q = x.segment<kNodeDofs>(kNodeDofs * beam.node(i));
       q.segment<3>(0) = rho * Eigen::Vector3d(std::sin(theta), 1.0 - std::cos(theta), 0.0);
       q.segment<3>(3) = Eigen::Vector3d(-std::sin(theta), std::cos(theta), 0.0);
     }
     Eigen::VectorXd u(problem->size());
     for (int i = 0, k = 0; i < model.num_dofs(); ++i)
-      if (i >= kDofsPerNode) u[k++] = x[i];
+      if (i >= kNodeDofs) u[k++] = x[i];
     problem->set_unknowns(u);
   }
 };

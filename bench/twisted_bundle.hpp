@@ -63,7 +63,7 @@ inline Bundle twisted_bundle(int fibres, int elements = 100, double length = 10.
           Eigen::Vector3d(-std::sin(angle) * std::sin(phi), std::sin(angle) * std::cos(phi), std::cos(angle));
       Eigen::Vector3d g1 = Eigen::Vector3d::UnitX() - t.x() * t;
       g1.normalize();
-      auto node = b.x.segment<model::kDofsPerNode>(model::kDofsPerNode * beam.node(i));
+      auto node = b.x.segment<beam::kNodeDofs>(beam::kNodeDofs * beam.node(i));
       node.head<3>() = r;
       node.segment<3>(3) = g1;
       node.segment<3>(6) = t.cross(g1);

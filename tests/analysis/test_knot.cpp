@@ -543,7 +543,7 @@ TEST(BeamCentreline, NodesOfOneBeamInOrder) {
   const beam::Beam& beam_b = m.beam(1);
   for (int i = 0; i < beam_b.num_nodes(); ++i) {
     const double t = beam_b.abscissa(i);
-    x.segment<3>(model::kDofsPerNode * beam_b.node(i)) = Vec3(std::cos(t), std::sin(t), 0.1 * t);
+    x.segment<3>(beam::kNodeDofs * beam_b.node(i)) = Vec3(std::cos(t), std::sin(t), 0.1 * t);
   }
   const Centreline ca = beam_centreline(m, x, 0);
   ASSERT_EQ(ca.points.size(), 9u);
@@ -569,7 +569,7 @@ TEST(BeamCentreline, NodesOfOneBeamInOrder) {
   // quadratics, at arc lengths 20 / (4 * 5) apart.
   for (int i = 0; i < m.beam(0).num_nodes(); ++i) {
     const double s = m.beam(0).abscissa(i);
-    x.segment<3>(model::kDofsPerNode * m.beam(0).node(i)) = Vec3(s, s * s / 20.0, 0.0);
+    x.segment<3>(beam::kNodeDofs * m.beam(0).node(i)) = Vec3(s, s * s / 20.0, 0.0);
   }
   const Centreline fine = beam_centreline(m, x, 0, 5);
   ASSERT_EQ(fine.points.size(), 21u);

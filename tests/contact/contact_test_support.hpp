@@ -37,7 +37,7 @@ inline void place_beam(const model::Model& model, Eigen::VectorXd& x, int beam, 
     const Vec3 t = (curve(s + step) - curve(s - step)).normalized();
     Vec3 g1 = hint(s) - hint(s).dot(t) * t;
     g1.normalize();
-    auto node = x.segment<model::kDofsPerNode>(model::kDofsPerNode * b.node(i));
+    auto node = x.segment<beam::kNodeDofs>(beam::kNodeDofs * b.node(i));
     node.head<3>() = curve(s);
     node.segment<3>(3) = g1;
     node.segment<3>(6) = t.cross(g1);
@@ -58,8 +58,8 @@ inline Curve constant(const Vec3& v) {
 /// Applies the rigid motion y = Q y + c to every position of `x`, and Q to every director.
 inline Eigen::VectorXd moved(const Eigen::VectorXd& x, const Eigen::Matrix3d& q, const Vec3& c) {
   Eigen::VectorXd y = x;
-  for (Eigen::Index n = 0; n < x.size() / model::kDofsPerNode; ++n) {
-    auto node = y.segment<model::kDofsPerNode>(model::kDofsPerNode * n);
+  for (Eigen::Index n = 0; n < x.size() / beam::kNodeDofs; ++n) {
+    auto node = y.segment<beam::kNodeDofs>(beam::kNodeDofs * n);
     node.head<3>() = q * node.head<3>() + c;
     node.segment<3>(3) = q * node.segment<3>(3);
     node.segment<3>(6) = q * node.segment<3>(6);

@@ -25,7 +25,7 @@ struct RandomAssembly {
       Vec3 p(coordinate(rng), coordinate(rng), coordinate(rng));
       for (int i = 0; i < model.beam(b).num_nodes(); ++i) {
         p += Vec3(step(rng), step(rng), step(rng));
-        x.segment<3>(model::kDofsPerNode * model.beam(b).node(i)) = p;
+        x.segment<3>(beam::kNodeDofs * model.beam(b).node(i)) = p;
       }
     }
   }

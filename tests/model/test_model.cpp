@@ -46,7 +46,7 @@ TEST(Model, GlobalTangentMatchesFiniteDifferences) {
     free_index[static_cast<std::size_t>(i)] = (i % 3 == 0) ? -1 : static_cast<int>(free_dofs.size());
     if (i % 3 != 0) free_dofs.push_back(i);
   }
-  solver::SparseAssembler assembler(kDofsPerNode, free_index, m.element_nodes());
+  solver::SparseAssembler assembler(beam::kNodeDofs, free_index, m.element_nodes());
   Eigen::VectorXd f;
   m.internal_force(x, f, &assembler);
   const Eigen::MatrixXd k = Eigen::MatrixXd(assembler.matrix());

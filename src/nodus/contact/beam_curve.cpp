@@ -10,7 +10,7 @@ namespace nodus::contact {
 
 namespace {
 
-constexpr int kDofs = model::kDofsPerNode;
+constexpr int kDofs = beam::kNodeDofs;
 
 /// The real roots in [lo, hi] of c0 + c1 t + c2 t^2 + c3 t^3, found by bisection on the monotone pieces
 /// between the roots of the derivative (robust where a closed form loses digits).

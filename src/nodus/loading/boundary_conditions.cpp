@@ -103,10 +103,10 @@ void Conditions::anchor_moment(Item& item, const NodeVector& state) {
 void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   Item& item = at(c);
   item.active = true;
-  const NodeVector state = x.segment<kNodeDofs>(kNodeDofs * item.nodes.front());
+  const NodeVector state = x.segment<beam::kNodeDofs>(beam::kNodeDofs * item.nodes.front());
   if (item.kind == ConditionKind::motion) {
     item.anchors.clear();
-    for (int node : item.nodes) item.anchors.push_back(x.segment<kNodeDofs>(kNodeDofs * node));
+    for (int node : item.nodes) item.anchors.push_back(x.segment<beam::kNodeDofs>(beam::kNodeDofs * node));
     item.pivot =
         item.given_pivot ? *item.given_pivot : item.anchors[item.anchors.size() / 2].head<3>().eval();
     item.translation.reset(time, Vec3::Zero());
@@ -129,7 +129,7 @@ void Conditions::release(int c, double time, const NodeVector& reaction, double 
     // one director, and a freed section that turns that director towards the axis (a knot's tail) makes it
     // singular; the stiffness m H of the vanishing moment then disappears abruptly at the end of the ramp.
     NodeVector f = NodeVector::Zero();
-    for (int d = 0; d < kNodeDofs; ++d)
+    for (int d = 0; d < beam::kNodeDofs; ++d)
       if (item.mask[static_cast<std::size_t>(d)]) f[d] = reaction[d];
     NodeVector rest = f;
     rest.segment<3>(0).setZero();
@@ -173,9 +173,9 @@ std::vector<bool> Conditions::prescribed(int num_dofs) const {
     const Item& item = at(c);
     if (!item.active || item.kind != ConditionKind::motion) continue;
     for (int node : item.nodes)
-      for (int d = 0; d < kNodeDofs; ++d) {
+      for (int d = 0; d < beam::kNodeDofs; ++d) {
         if (!item.mask[d]) continue;
-        const auto dof = static_cast<std::size_t>(kNodeDofs * node + d);
+        const auto dof = static_cast<std::size_t>(beam::kNodeDofs * node + d);
         if (owner[dof] >= 0)
           throw std::runtime_error(
               fmt::format("conditions '{}' and '{}' both prescribe unknown {} of node {}",
@@ -201,8 +201,8 @@ void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
     if (!item.active || item.kind != ConditionKind::motion) continue;
     for (std::size_t k = 0; k < item.nodes.size(); ++k) {
       const NodeVector v = prescribed_values(item, k, time);
-      for (int d = 0; d < kNodeDofs; ++d)
-        if (item.mask[d]) x[kNodeDofs * item.nodes[k] + d] = v[d];
+      for (int d = 0; d < beam::kNodeDofs; ++d)
+        if (item.mask[d]) x[beam::kNodeDofs * item.nodes[k] + d] = v[d];
     }
   }
 }
@@ -215,9 +215,9 @@ bool Conditions::applies_load(const Item& item) {
 void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
   for (const Item& item : items_) {
     if (!applies_load(item)) continue;
-    const int base = kNodeDofs * item.nodes.front();
+    const int base = beam::kNodeDofs * item.nodes.front();
     f_ext.segment<3>(base) += item.force.at(time);
-    f_ext.segment<kNodeDofs>(base) += item.director_force.at(time);
+    f_ext.segment<beam::kNodeDofs>(base) += item.director_force.at(time);
     const double m = item.moment.at(time);
     if (m != 0.0) {
       const int v = base + 3 + 3 * item.director;
@@ -232,8 +232,8 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
     if (!applies_load(item)) continue;
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
-    const int v = kNodeDofs * item.nodes.front() + 3 + 3 * item.director;
-    Eigen::Matrix<double, kNodeDofs, kNodeDofs> k = Eigen::Matrix<double, kNodeDofs, kNodeDofs>::Zero();
+    const int v = beam::kNodeDofs * item.nodes.front() + 3 + 3 * item.director;
+    Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs> k = Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs>::Zero();
     k.block<3, 3>(3 + 3 * item.director, 3 + 3 * item.director) = -m * item.angle->hessian(x.segment<3>(v));
     const int nodes[1] = {item.nodes.front()};
     assembler.add(nodes, k);
@@ -243,13 +243,13 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
 void Conditions::commit(const Eigen::VectorXd& x) {
   for (Item& item : items_)
     if (applies_load(item) && item.angle)
-      item.angle->commit(x.segment<3>(kNodeDofs * item.nodes.front() + 3 + 3 * item.director));
+      item.angle->commit(x.segment<3>(beam::kNodeDofs * item.nodes.front() + 3 + 3 * item.director));
 }
 
 SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd& x,
                                        const Eigen::VectorXd& residual) const {
   const Item& item = at(c);
-  const int base = kNodeDofs * item.nodes.front();
+  const int base = beam::kNodeDofs * item.nodes.front();
   SectionForce out;
   if (applies_load(item)) {
     const NodeVector f = item.director_force.at(time);
@@ -262,7 +262,7 @@ SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd
   if (item.rigid) {  // resultant about the moved pivot
     const Vec3 centre = item.pivot + item.translation.at(time);
     for (int node : item.nodes) {
-      const int b = kNodeDofs * node;
+      const int b = beam::kNodeDofs * node;
       out.force += residual.segment<3>(b);
       out.moment += (x.segment<3>(b) - centre).cross(residual.segment<3>(b)) +
                     x.segment<3>(b + 3).cross(residual.segment<3>(b + 3)) +

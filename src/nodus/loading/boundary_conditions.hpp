@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/beam/beam_element.hpp"
 #include "nodus/loading/moment_load.hpp"
 #include "nodus/loading/path.hpp"
 
@@ -21,9 +22,9 @@ class SparseAssembler;
 
 namespace nodus::loading {
 
-inline constexpr int kNodeDofs = 9;
-using DofMask = std::array<bool, kNodeDofs>;
-using NodeVector = Eigen::Matrix<double, kNodeDofs, 1>;
+/// Which of a beam node's nine unknowns (r, g1, g2) a condition prescribes.
+using DofMask = std::array<bool, beam::kNodeDofs>;
+using NodeVector = Eigen::Matrix<double, beam::kNodeDofs, 1>;
 
 /// Force and moment that the supports (or loads) exert on a section [N, N mm], moment about its centre.
 struct SectionForce {

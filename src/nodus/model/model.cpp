@@ -1,23 +1,36 @@
 #include "nodus/model/model.hpp"
 
 #include <array>
+#include <stdexcept>
 
 #include "nodus/solver/sparse_assembler.hpp"
 
 namespace nodus::model {
 
 int Model::add_beam(const beam::BeamDefinition& definition) {
+  if (dofs_.num_blocks() != num_nodes_)
+    throw std::logic_error("Model::add_beam: beams come before any other unknowns");
   beams_.emplace_back(definition, num_nodes_);
   const beam::Beam& b = beams_.back();
   properties_.push_back(b.element_properties(gauss_points_));
   properties_.back().fold_stiffness = fold_stiffness_;
   const int index = static_cast<int>(beams_.size()) - 1;
   for (int e = 0; e < b.num_elements(); ++e) elements_.push_back({index, b.node(2 * e)});
-  reference_.conservativeResize(kDofsPerNode * (num_nodes_ + b.num_nodes()));
+  for (int i = 0; i < b.num_nodes(); ++i) dofs_.add_block(kBeamNodeKinds);
+  reference_.conservativeResize(dofs_.num_dofs());
   for (int i = 0; i < b.num_nodes(); ++i)
-    reference_.segment<kDofsPerNode>(kDofsPerNode * b.node(i)) = b.reference_node(i);
+    reference_.segment<beam::kNodeDofs>(node_dof(b.node(i))) = b.reference_node(i);
   num_nodes_ += b.num_nodes();
   return index;
+}
+
+int Model::add_unknowns(std::span<const DofKind> kinds, const Eigen::VectorXd& initial) {
+  if (initial.size() != static_cast<Eigen::Index>(kinds.size()))
+    throw std::invalid_argument("Model::add_unknowns: one initial value per unknown");
+  const int block = dofs_.add_block(kinds);
+  reference_.conservativeResize(dofs_.num_dofs());
+  reference_.tail(initial.size()) = initial;
+  return block;
 }
 
 std::vector<std::vector<int>> Model::element_nodes() const {
@@ -28,8 +41,7 @@ std::vector<std::vector<int>> Model::element_nodes() const {
 }
 
 beam::ElementVector Model::gather(const Eigen::VectorXd& x, int element) const {
-  return x.segment<beam::kElementDofs>(kDofsPerNode *
-                                       elements_[static_cast<std::size_t>(element)].first_node);
+  return x.segment<beam::kElementDofs>(node_dof(elements_[static_cast<std::size_t>(element)].first_node));
 }
 
 Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> Model::node_strains(const Eigen::VectorXd& x) const {
@@ -60,13 +72,18 @@ void Model::internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
                            solver::SparseAssembler* assembler) const {
   force.setZero(num_dofs());
   if (assembler) assembler->set_zero();
+  add_internal_force(x, force, assembler);
+}
+
+void Model::add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
+                               solver::SparseAssembler* assembler) const {
   beam::ElementVector f_e;
   beam::ElementMatrix k_e;
   for (int e = 0; e < num_elements(); ++e) {
     const Element& el = elements_[static_cast<std::size_t>(e)];
     beam::element_internal_force(gather(x, e), properties_[static_cast<std::size_t>(el.beam)], f_e,
                                  assembler ? &k_e : nullptr);
-    force.segment<beam::kElementDofs>(kDofsPerNode * el.first_node) += f_e;
+    force.segment<beam::kElementDofs>(node_dof(el.first_node)) += f_e;
     if (assembler) {
       const std::array<int, 3> nodes{el.first_node, el.first_node + 1, el.first_node + 2};
       assembler->add(nodes, k_e);

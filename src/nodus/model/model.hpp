@@ -1,7 +1,8 @@
 #pragma once
 /// The mechanical model: the beams of an assembly, their nodes and unknowns, and their internal virtual work
-/// [Durville 2012, Eq. 3 and 8]. Unknowns are the current nodal values (r, g1, g2), nine per node, node by
-/// node; the displacement is the difference to `reference()`.
+/// [Durville 2012, Eq. 3 and 8]. Its unknowns are handed out by a DofMap: the beams' nodes first, each a
+/// block of its current values (r, g1, g2), nine per node, node by node (node n is block n); then whatever
+/// other unknowns were added (add_unknowns). The displacement is the difference to `reference()`.
 
 #include <span>
 #include <vector>
@@ -9,6 +10,7 @@
 #include <Eigen/Core>
 
 #include "nodus/beam/beam.hpp"
+#include "nodus/model/dof_map.hpp"
 
 namespace nodus::solver {
 class SparseAssembler;
@@ -16,27 +18,42 @@ class SparseAssembler;
 
 namespace nodus::model {
 
-inline constexpr int kDofsPerNode = beam::kNodeDofs;
+/// What the nine unknowns of a beam node measure: r, then g1 and g2.
+inline constexpr DofKind kBeamNodeKinds[beam::kNodeDofs] = {
+    DofKind::position, DofKind::position, DofKind::position, DofKind::director, DofKind::director,
+    DofKind::director, DofKind::director, DofKind::director, DofKind::director};
 
 class Model {
  public:
   explicit Model(int gauss_points = 2, double fold_stiffness = 0.0)
       : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness) {}
 
-  /// Adds a beam; returns its index.
+  /// Adds a beam, its nodes a block of nine unknowns each; returns its index. Beams come before any other
+  /// unknowns (std::logic_error otherwise), so that node n is block n.
   int add_beam(const beam::BeamDefinition& definition);
+  /// Adds a block of unknowns of the given kinds, starting at `initial` in the reference state; returns the
+  /// block's index in dofs().
+  int add_unknowns(std::span<const DofKind> kinds, const Eigen::VectorXd& initial);
 
   const std::vector<beam::Beam>& beams() const { return beams_; }
   const beam::Beam& beam(int i) const { return beams_.at(static_cast<std::size_t>(i)); }
   int num_nodes() const { return num_nodes_; }
-  int num_dofs() const { return kDofsPerNode * num_nodes_; }
+  int num_dofs() const { return dofs_.num_dofs(); }
+  /// The blocks of unknowns.
+  const DofMap& dofs() const { return dofs_; }
+  /// The first unknown of beam node `node`.
+  int node_dof(int node) const { return dofs_.first(node); }
   int num_elements() const { return static_cast<int>(elements_.size()); }
   int gauss_points() const { return gauss_points_; }
 
-  /// Reference configuration (nine values per node).
+  /// Reference configuration (every unknown: nine values per node, then the other blocks).
   const Eigen::VectorXd& reference() const { return reference_; }
   /// Global node indices of each element (three per element).
   std::vector<std::vector<int>> element_nodes() const;
+  /// The first of the three consecutive global nodes of `element`.
+  int element_first_node(int element) const {
+    return elements_[static_cast<std::size_t>(element)].first_node;
+  }
   /// The 27 element unknowns gathered from the global vector.
   beam::ElementVector gather(const Eigen::VectorXd& x, int element) const;
 
@@ -50,6 +67,9 @@ class Model {
   /// tangent over the free unknowns into `assembler` if not null.
   void internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
                       solver::SparseAssembler* assembler) const;
+  /// Adds the internal forces to `force` (num_dofs() values) and, if `assembler` is not null, their tangent.
+  void add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
+                          solver::SparseAssembler* assembler) const;
 
  private:
   struct Element {
@@ -63,6 +83,7 @@ class Model {
   std::vector<beam::ElementProperties> properties_;  ///< one per beam
   std::vector<Element> elements_;
   Eigen::VectorXd reference_;
+  DofMap dofs_;
   int num_nodes_ = 0;
 };
 

@@ -22,8 +22,8 @@ std::string final_nodes_csv(const model::Model& model, const Eigen::VectorXd& x)
     const std::string name = csv_field(b.name());
     for (int i = 0; i < b.num_nodes(); ++i) {
       fmt::format_to(std::back_inserter(out), "{},{},{:.12g}", name, i, b.abscissa(i));
-      const Eigen::Index first = static_cast<Eigen::Index>(model::kDofsPerNode) * b.node(i);
-      for (int k = 0; k < model::kDofsPerNode; ++k)
+      const Eigen::Index first = model.node_dof(b.node(i));
+      for (int k = 0; k < beam::kNodeDofs; ++k)
         fmt::format_to(std::back_inserter(out), ",{:.12g}", x[first + k]);
       out.push_back('\n');
     }

@@ -13,7 +13,6 @@
 namespace nodus::output {
 namespace {
 
-constexpr int kNode = model::kDofsPerNode;
 using vtk_xml::ChunkedWriter;
 
 void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_sides) {
@@ -60,7 +59,7 @@ TubeMesh tube_mesh(const model::Model& model, const Eigen::VectorXd& x, int tube
     const double radius = b.radius();
     for (int i = 0; i < b.num_nodes(); ++i) {
       const int n = b.node(i);
-      const Eigen::Index first = static_cast<Eigen::Index>(kNode) * n;
+      const Eigen::Index first = model.node_dof(n);
       const Eigen::Vector3d r = x.segment<3>(first);
       const Eigen::Vector3d g1 = x.segment<3>(first + 3);
       const Eigen::Vector3d g2 = x.segment<3>(first + 6);
@@ -112,12 +111,12 @@ void write_vtp(std::ostream& out, const model::Model& model, const Eigen::Vector
   node_array(w, "Int32", "node", 1, num_nodes, tube_sides, [&](int n) { w.print("{}", n); });
   const Eigen::VectorXd& ref = model.reference();
   node_array(w, "Float64", "displacement", 3, num_nodes, tube_sides, [&](int n) {
-    const Eigen::Index f = static_cast<Eigen::Index>(kNode) * n;
+    const Eigen::Index f = model.node_dof(n);
     w.print("{:.12g} {:.12g} {:.12g}", x[f] - ref[f], x[f + 1] - ref[f + 1], x[f + 2] - ref[f + 2]);
   });
   for (int d = 0; d < 2; ++d)
     node_array(w, "Float64", d == 0 ? "g1" : "g2", 3, num_nodes, tube_sides, [&](int n) {
-      const Eigen::Index f = static_cast<Eigen::Index>(kNode) * n + 3 + 3 * d;
+      const Eigen::Index f = model.node_dof(n) + 3 + 3 * d;
       w.print("{:.12g} {:.12g} {:.12g}", x[f], x[f + 1], x[f + 2]);
     });
   for (int k = 0; k < beam::kNumStrains; ++k)

@@ -1,6 +1,8 @@
 #pragma once
-/// The equilibrium of the model under its boundary conditions at one load time [Durville 2012, Eq. 8]:
-/// residual R = f_int - f_ext over the free unknowns, and its tangent. Prescribed unknowns are eliminated.
+/// The equilibrium of the model under its boundary conditions at one load time [Durville 2012, Eq. 8]: the
+/// out-of-balance forces R = f_int - f_ext over the free unknowns, a sum of terms (model/term.hpp), and its
+/// tangent. Prescribed unknowns are eliminated. The problem is built with the terms of a beam assembly (beam
+/// internal forces, loads, contact-friction, viscous drag); others are registered with add_term().
 
 #include <memory>
 #include <optional>
@@ -8,10 +10,11 @@
 
 #include <Eigen/Core>
 
-#include "nodus/contact/contact_mechanics.hpp"
-#include "nodus/contact/detection.hpp"
+#include "nodus/contact/contact_term.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
+#include "nodus/model/term.hpp"
+#include "nodus/simulation/drag_term.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/sparse_assembler.hpp"
 
@@ -22,21 +25,14 @@ struct Tolerances {
   double increment = 1e-6;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
 };
 
-/// The state of one contact element at the last evaluation.
-struct ContactState {
-  double gap = 0.0;                                      ///< [mm]
-  double normal_reaction = 0.0;                          ///< R_N [N]
-  Eigen::Vector3d tangential = Eigen::Vector3d::Zero();  ///< friction force on J [N]
-  Eigen::Vector3d reversible = Eigen::Vector3d::Zero();  ///< g_rev [mm]
-  bool slip = false;
-};
+using ContactState = contact::ContactState;
 
 /// What the problem carries from one load step to the next (at a committed state): the unknowns and load
 /// time, and the contact elements it was solved with, their zones' penalties, committed reversible
 /// displacements and last evaluated states. Restored into a problem built on the same model and conditions,
 /// it continues the run exactly.
 struct ProblemState {
-  Eigen::VectorXd x;  ///< committed unknowns, nine per node
+  Eigen::VectorXd x;  ///< committed unknowns, all of the model's DofMap, in its order
   double time = 0.0;  ///< committed load time [s]
   contact::ContactGeometry contact;
   std::vector<double> penalty;               ///< per zone [N/mm]
@@ -44,19 +40,17 @@ struct ProblemState {
   std::vector<ContactState> contact_states;  ///< per contact element, at the last evaluation
 };
 
-/// Viscous stabilisation of a stage: a drag -c_n (x_n - x_n,committed) / dt on the centre of every node n,
-/// c_n the node's share of the beam length times the coefficient eta(t) [N s/mm^2], which goes geometrically
-/// from `start` at t0 to `end` at t1 (end 0: to 1e-6 start, and exactly 0 at t1).
-struct Stabilization {
-  double t0 = 0.0, t1 = 0.0;      ///< the stage [s]
-  double start = 0.0, end = 0.0;  ///< eta at t0 and t1 [N s/mm^2]
-  /// eta at load time t [N s/mm^2].
-  double at(double t) const;
-};
-
 class EquilibriumProblem final : public solver::SteppedProblem {
  public:
+  /// The problem of a beam assembly: the terms of beam internal forces, loads, contact-friction (no elements
+  /// yet) and viscous drag (none yet), in that order. `model` and `conditions` outlive the problem.
   EquilibriumProblem(const model::Model& model, loading::Conditions& conditions, Tolerances tolerances);
+
+  /// Registers one more term (after the built-in ones) and rebuilds the sparse pattern; returns it.
+  model::Term& add_term(std::unique_ptr<model::Term> term);
+  /// Rebuilds the sparse pattern from the terms' couplings (after a term's couplings changed; the solver must
+  /// re-analyse it).
+  void rebuild_pattern();
 
   /// Re-reads which unknowns are prescribed (after conditions were activated or released); rebuilds the
   /// sparse pattern.
@@ -69,17 +63,20 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   void evaluate(Eigen::VectorXd& residual, bool with_tangent) override;
   const solver::SparseMatrix& tangent() const override { return assembler_->matrix(); }
   double residual_tolerance() const override { return residual_tolerance_; }
+  /// max |du_i| / scale_i over the free unknowns: positions scaled by the longest beam, directors, rotations
+  /// and other unknowns by 1 (model::DofKind).
   double scaled_increment(const Eigen::VectorXd& du) const override;
   double increment_tolerance() const override { return tolerances_.increment; }
 
   // solver::SteppedProblem
   void set_time(double t) override;
-  /// The viscous stabilisation of the stage being solved (default: none).
-  void set_stabilization(const Stabilization& s) { stabilization_ = s; }
-  /// |drag force| over all nodes at the last evaluation [N] (0 without stabilisation).
-  double stabilization_force() const { return stabilization_force_; }
   void commit() override;
   void restore() override;
+
+  /// The viscous stabilisation of the stage being solved (default: none).
+  void set_stabilization(const Stabilization& s) { drag_->set(s); }
+  /// |drag force| over all nodes at the last evaluation [N] (0 without stabilisation).
+  double stabilization_force() const { return drag_->force(); }
 
   double time() const { return time_; }
   const Eigen::VectorXd& state() const { return x_; }
@@ -93,59 +90,45 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   const Eigen::VectorXd& full_residual() const { return residual_full_; }
 
   // Contact (Sect. 5): the contact elements, their normals and particles fixed during Newton.
-  /// Replaces the contact elements; `penalty` per zone [N/mm], `reversible` per element (committed g_rev).
-  /// Rebuilds the sparse pattern (the solver must re-analyse it).
+  contact::ContactTerm& contact() { return *contact_; }
+  const contact::ContactTerm& contact() const { return *contact_; }
+  /// Replaces the contact elements (ContactTerm::set_elements) and rebuilds the sparse pattern (the solver
+  /// must re-analyse it).
   void set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
                    std::vector<Eigen::Vector3d> reversible);
-  /// The laws: p_reg of the normal law, and friction (null: none).
-  /// `options`: where the particles sit, and the friction tangent with R_N varying (not symmetric; for an LU
-  /// solver).
+  /// The laws: p_reg of the normal law, and friction (null: none); see ContactTerm::set_laws.
   void set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction,
-                        contact::ResponseOptions options = {});
-  contact::ContactGeometry& contact_geometry() { return contact_; }
-  const contact::ContactGeometry& contact_geometry() const { return contact_; }
-  std::vector<double>& zone_penalty() { return penalty_; }
+                        contact::ResponseOptions options = {}) {
+    contact_->set_laws(regularization, friction, options);
+  }
+  contact::ContactGeometry& contact_geometry() { return contact_->geometry(); }
+  const contact::ContactGeometry& contact_geometry() const { return contact_->geometry(); }
+  std::vector<double>& zone_penalty() { return contact_->zone_penalty(); }
   /// Committed g_rev per contact element.
-  const std::vector<Eigen::Vector3d>& reversible_committed() const { return reversible_committed_; }
+  const std::vector<Eigen::Vector3d>& reversible_committed() const {
+    return contact_->reversible_committed();
+  }
   /// Per contact element, at the last evaluation.
-  const std::vector<ContactState>& contact_states() const { return contact_states_; }
+  const std::vector<ContactState>& contact_states() const { return contact_->states(); }
 
  private:
   const model::Model& model_;
   loading::Conditions& conditions_;
   Tolerances tolerances_;
-  double length_scale_;
-  double force_floor_;
+  std::vector<std::unique_ptr<model::Term>> terms_;
+  contact::ContactTerm* contact_ = nullptr;  ///< owned by terms_
+  DragTerm* drag_ = nullptr;                 ///< owned by terms_
+  std::vector<double> increment_scale_;      ///< per unknown
   Eigen::VectorXd x_, x_committed_;
   double time_ = 0.0, time_committed_ = 0.0;
   std::vector<int> free_dofs_;
   std::vector<int> free_index_;  ///< per unknown: its row among the free ones, or -1
   std::vector<bool> prescribed_;
   std::unique_ptr<solver::SparseAssembler> assembler_;
-  Eigen::VectorXd f_int_, f_ext_, residual_full_;
+  Eigen::VectorXd residual_full_;
   double residual_tolerance_ = 0.0;
-  std::vector<std::vector<int>> element_nodes_;
-  contact::ContactGeometry contact_;
-  std::vector<double> penalty_;
-  std::vector<Eigen::Vector3d> reversible_committed_;
-  std::vector<ContactState> contact_states_;
-  double regularization_ = 0.0;
-  std::optional<contact::FrictionLaw> friction_;
-  contact::ResponseOptions response_options_;
 
-  Stabilization stabilization_;
-  double stabilization_force_ = 0.0;
-  double stabilization_roundoff_ =
-      0.0;                           ///< round-off of the drag in the residual, sqrt(sum (c eps |x|)^2) [N]
-  std::vector<double> node_length_;  ///< per node: its share of the beam length (Simpson weights) [mm]
-  std::vector<double>
-      node_director_length_;  ///< per node: R^2/4 times node_length_ (drag on the directors) [mm^3]
-
-  void rebuild_pattern();
-  /// Adds the stabilisation drag to residual_full_ and, if `assembler`, its tangent.
-  void add_stabilization(solver::SparseAssembler* assembler);
-  /// Adds the contact forces to residual_full_ and, if `assembler`, their tangent.
-  void add_contact(solver::SparseAssembler* assembler);
+  model::TermState term_state() const { return {x_, x_committed_, time_, time_committed_}; }
 };
 
 }  // namespace nodus::simulation

@@ -81,9 +81,9 @@ void check_stages(const scenario::Scenario& s, const model::Model& model,
       const beam::Beam& beam = model.beam(spec.beam);
       const bool rigid = spec.type == scenario::ConditionType::rigid;
       for (int local = rigid ? 0 : spec.node; local <= (rigid ? beam.num_nodes() - 1 : spec.node); ++local)
-        for (int d = 0; d < model::kDofsPerNode; ++d) {
+        for (int d = 0; d < beam::kNodeDofs; ++d) {
           if (!spec.dofs[static_cast<std::size_t>(d)]) continue;
-          int& o = owner[static_cast<std::size_t>(model::kDofsPerNode * beam.node(local) + d)];
+          int& o = owner[static_cast<std::size_t>(model.node_dof(beam.node(local)) + d)];
           if (o >= 0)
             throw scenario::ScenarioError(fmt::format(
                 "{}:{}: conditions[{}]{}: expected no unknown prescribed by two active conditions, got '{}' "
@@ -283,8 +283,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
         problem_->evaluate(residual, false);
         for (int c : stage.release)
           conditions_.release(c, t0,
-                              problem_->full_residual().segment<model::kDofsPerNode>(model::kDofsPerNode *
-                                                                                     conditions_.node(c)),
+                              problem_->full_residual().segment<beam::kNodeDofs>(
+                                  model_.node_dof(conditions_.node(c))),
                               t1);
       }
       for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());

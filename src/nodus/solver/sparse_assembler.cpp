@@ -5,20 +5,37 @@
 #include <stdexcept>
 
 namespace nodus::solver {
+namespace {
 
-SparseAssembler::SparseAssembler(int block_size, std::vector<int> free_index,
-                                 const std::vector<std::vector<int>>& groups)
-    : block_size_(block_size), free_index_(std::move(free_index)) {
-  if (block_size_ < 1 || free_index_.size() % static_cast<std::size_t>(block_size_) != 0)
+std::vector<int> uniform_offsets(int block_size, std::size_t num_dofs) {
+  if (block_size < 1 || num_dofs % static_cast<std::size_t>(block_size) != 0)
     throw std::invalid_argument("SparseAssembler: the unknowns must come in whole blocks");
-  const int num_blocks = static_cast<int>(free_index_.size()) / block_size_;
+  std::vector<int> offsets;
+  for (std::size_t first = 0; first <= num_dofs; first += static_cast<std::size_t>(block_size))
+    offsets.push_back(static_cast<int>(first));
+  return offsets;
+}
+
+}  // namespace
+
+SparseAssembler::SparseAssembler(int block_size, const std::vector<int>& free_index,
+                                 const std::vector<std::vector<int>>& groups)
+    : SparseAssembler(uniform_offsets(block_size, free_index.size()), free_index, groups) {}
+
+SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
+                                 const std::vector<std::vector<int>>& groups)
+    : offsets_(std::move(block_offsets)), free_index_(std::move(free_index)) {
+  if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != static_cast<int>(free_index_.size()) ||
+      !std::is_sorted(offsets_.begin(), offsets_.end()))
+    throw std::invalid_argument("SparseAssembler: block offsets do not cover the unknowns in order");
+  const int num_blocks = static_cast<int>(offsets_.size()) - 1;
   const int n =
       static_cast<int>(std::count_if(free_index_.begin(), free_index_.end(), [](int i) { return i >= 0; }));
 
-  std::vector<std::vector<int>> neighbours(num_blocks);
+  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(num_blocks));
   for (const auto& group : groups)
     for (int a : group)
-      for (int b : group) neighbours.at(a).push_back(b);
+      for (int b : group) neighbours.at(static_cast<std::size_t>(a)).push_back(b);
   for (auto& list : neighbours) {
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
@@ -29,14 +46,16 @@ SparseAssembler::SparseAssembler(int block_size, std::vector<int> free_index,
   std::vector<int> inner;
   int col = 0;
   for (int block = 0; block < num_blocks; ++block) {
-    for (int c = 0; c < block_size_; ++c) {
-      if (free_index_[block * block_size_ + c] < 0) continue;
-      for (int other : neighbours[block])
-        for (int r = 0; r < block_size_; ++r) {
-          const int row = free_index_[other * block_size_ + r];
+    for (int c = offsets_[static_cast<std::size_t>(block)]; c < offsets_[static_cast<std::size_t>(block) + 1];
+         ++c) {
+      if (free_index_[static_cast<std::size_t>(c)] < 0) continue;
+      for (int other : neighbours[static_cast<std::size_t>(block)])
+        for (int r = offsets_[static_cast<std::size_t>(other)];
+             r < offsets_[static_cast<std::size_t>(other) + 1]; ++r) {
+          const int row = free_index_[static_cast<std::size_t>(r)];
           if (row >= 0) inner.push_back(row);
         }
-      outer[++col] = static_cast<int>(inner.size());
+      outer[static_cast<std::size_t>(++col)] = static_cast<int>(inner.size());
     }
   }
   assert(col == n);
@@ -59,25 +78,37 @@ int SparseAssembler::value_offset(int row, int col) const {
 }
 
 void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k) {
-  const int m = static_cast<int>(blocks.size()) * block_size_;
+  const auto block_first = [&](int b) { return offsets_[static_cast<std::size_t>(b)]; };
+  const auto block_size = [&](int b) {
+    return offsets_[static_cast<std::size_t>(b) + 1] - offsets_[static_cast<std::size_t>(b)];
+  };
+  int m = 0;
+  for (int b : blocks) m += block_size(b);
   if (k.rows() != m || k.cols() != m) throw std::invalid_argument("SparseAssembler::add: size mismatch");
   double* values = matrix_.valuePtr();
-  const int num_blocks = static_cast<int>(blocks.size());
-  for (int j = 0; j < m; ++j) {
-    const int col = free_index_[blocks[j / block_size_] * block_size_ + j % block_size_];
-    if (col < 0) continue;
-    for (int b = 0; b < num_blocks; ++b) {
-      // The free unknowns of a block have consecutive reduced indices, so they sit next to each other in the
-      // column: one search per block.
-      const int* free = free_index_.data() + blocks[static_cast<std::size_t>(b)] * block_size_;
-      int first = 0;
-      while (first < block_size_ && free[first] < 0) ++first;
-      if (first == block_size_) continue;
-      int offset = value_offset(free[first], col);
-      for (int r = first; r < block_size_; ++r) {
-        if (free[r] < 0) continue;
-        assert(matrix_.innerIndexPtr()[offset] == free[r]);
-        values[offset++] += k(b * block_size_ + r, j);
+  int j = 0;  // column of k
+  for (int column_block : blocks) {
+    const int* column_free = free_index_.data() + block_first(column_block);
+    for (int c = 0; c < block_size(column_block); ++c, ++j) {
+      const int col = column_free[c];
+      if (col < 0) continue;
+      int i = 0;  // first row of k of the row block
+      for (int row_block : blocks) {
+        const int size = block_size(row_block);
+        // The free unknowns of a block have consecutive reduced indices, so they sit next to each other in
+        // the column: one search per block.
+        const int* free = free_index_.data() + block_first(row_block);
+        int first = 0;
+        while (first < size && free[first] < 0) ++first;
+        if (first < size) {
+          int offset = value_offset(free[first], col);
+          for (int r = first; r < size; ++r) {
+            if (free[r] < 0) continue;
+            assert(matrix_.innerIndexPtr()[offset] == free[r]);
+            values[offset++] += k(i + r, j);
+          }
+        }
+        i += size;
       }
     }
   }

@@ -1,7 +1,7 @@
 #pragma once
 /// Assembly of a sparse symmetric-pattern matrix over the free unknowns of a system whose unknowns come in
-/// blocks (nodes) of fixed size. The pattern is built once from the block connectivity and then reused: each
-/// assembly only overwrites values.
+/// blocks (a beam node's nine, a rigid body's six, ...). The pattern is built once from the block
+/// connectivity and then reused: each assembly only overwrites values.
 
 #include <span>
 #include <vector>
@@ -15,13 +15,18 @@ using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
 class SparseAssembler {
  public:
+  /// `block_offsets`: the first unknown of every block, then the number of unknowns (increasing).
   /// `free_index[dof]` is the row of unknown `dof` in the reduced system, or -1 if the unknown is prescribed.
   /// `groups` lists, for every element, the blocks it couples. All unknowns of coupled blocks are coupled.
-  SparseAssembler(int block_size, std::vector<int> free_index, const std::vector<std::vector<int>>& groups);
+  SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
+                  const std::vector<std::vector<int>>& groups);
+  /// Blocks of `block_size` unknowns each.
+  SparseAssembler(int block_size, const std::vector<int>& free_index,
+                  const std::vector<std::vector<int>>& groups);
 
   int size() const { return static_cast<int>(matrix_.rows()); }
   void set_zero();
-  /// Adds the dense matrix `k` of the unknowns of `blocks` (block_size unknowns each, in order).
+  /// Adds the dense matrix `k` of the unknowns of `blocks` (each block's unknowns, in order).
   void add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k);
   const SparseMatrix& matrix() const { return matrix_; }
   const std::vector<int>& free_index() const { return free_index_; }
@@ -29,7 +34,7 @@ class SparseAssembler {
  private:
   int value_offset(int row, int col) const;
 
-  int block_size_;
+  std::vector<int> offsets_;
   std::vector<int> free_index_;
   SparseMatrix matrix_;
 };

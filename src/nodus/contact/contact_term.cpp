@@ -1,0 +1,61 @@
+#include "nodus/contact/contact_term.hpp"
+
+#include <array>
+
+#include "nodus/solver/sparse_assembler.hpp"
+
+namespace nodus::contact {
+
+void ContactTerm::couplings(std::vector<std::vector<int>>& groups) const {
+  for (const ContactElement& e : geometry_.elements) {
+    const int i = model_.element_first_node(e.particle_i.element);
+    const int j = model_.element_first_node(e.particle_j.element);
+    groups.push_back({i, i + 1, i + 2, j, j + 1, j + 2});
+  }
+}
+
+void ContactTerm::set_elements(ContactGeometry geometry, std::vector<double> penalty,
+                               std::vector<Eigen::Vector3d> reversible) {
+  geometry_ = std::move(geometry);
+  penalty_ = std::move(penalty);
+  reversible_committed_ = std::move(reversible);
+  states_.assign(geometry_.elements.size(), ContactState{});
+}
+
+void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> friction,
+                           ResponseOptions options) {
+  regularization_ = regularization;
+  friction_ = friction;
+  options_ = options;
+}
+
+void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
+                      solver::SparseAssembler* tangent) {
+  constexpr int kNode = beam::kNodeDofs;
+  std::array<int, 6> blocks{};
+  for (std::size_t k = 0; k < geometry_.elements.size(); ++k) {
+    const ContactElement& e = geometry_.elements[k];
+    const int ei = e.particle_i.element, ej = e.particle_j.element;
+    const NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
+    const ContactResponse r =
+        contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
+                         model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
+                         friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_);
+    states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
+    const int ni = model_.element_first_node(ei), nj = model_.element_first_node(ej);
+    for (int a = 0; a < 3; ++a) {
+      blocks[static_cast<std::size_t>(a)] = ni + a;
+      blocks[static_cast<std::size_t>(a + 3)] = nj + a;
+    }
+    for (int b = 0; b < 6; ++b)
+      residual.segment<kNode>(model_.node_dof(blocks[static_cast<std::size_t>(b)])) +=
+          r.force.segment<kNode>(kNode * b);
+    if (tangent) tangent->add(blocks, r.tangent);
+  }
+}
+
+void ContactTerm::commit(const model::TermState& /*state*/) {
+  for (std::size_t k = 0; k < states_.size(); ++k) reversible_committed_[k] = states_[k].reversible;
+}
+
+}  // namespace nodus::contact

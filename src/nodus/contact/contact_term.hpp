@@ -1,0 +1,70 @@
+#pragma once
+/// Contact-friction as a term of the equilibrium [Durville 2012, Sect. 5 and Eq. 8]: the forces of the
+/// contact elements (normal penalty law, regularised Coulomb friction; contact_mechanics.hpp) with their
+/// normals and particles fixed, as the contact loops set them, and their tangent. It carries the history of
+/// friction: the committed reversible displacement of each element.
+
+#include <optional>
+#include <vector>
+
+#include <Eigen/Core>
+
+#include "nodus/contact/contact_mechanics.hpp"
+#include "nodus/contact/detection.hpp"
+#include "nodus/model/model.hpp"
+#include "nodus/model/term.hpp"
+
+namespace nodus::contact {
+
+/// The state of one contact element at the last evaluation.
+struct ContactState {
+  double gap = 0.0;                                      ///< [mm]
+  double normal_reaction = 0.0;                          ///< R_N [N]
+  Eigen::Vector3d tangential = Eigen::Vector3d::Zero();  ///< friction force on J [N]
+  Eigen::Vector3d reversible = Eigen::Vector3d::Zero();  ///< g_rev [mm]
+  bool slip = false;
+};
+
+class ContactTerm final : public model::Term {
+ public:
+  explicit ContactTerm(const model::Model& model) : model_(model) {}
+
+  std::string_view name() const override { return "contact-friction"; }
+  /// The nodes of both elements of every contact element.
+  void couplings(std::vector<std::vector<int>>& groups) const override;
+  void add(const model::TermState& state, Eigen::VectorXd& residual,
+           solver::SparseAssembler* tangent) override;
+  bool evaluates_before_commit() const override { return !geometry_.elements.empty(); }
+  /// The reversible displacements of the converged state become the committed ones.
+  void commit(const model::TermState& state) override;
+
+  /// Replaces the contact elements; `penalty` per zone [N/mm], `reversible` per element (committed g_rev).
+  /// The couplings change: the problem must rebuild its pattern.
+  void set_elements(ContactGeometry geometry, std::vector<double> penalty,
+                    std::vector<Eigen::Vector3d> reversible);
+  /// The laws: p_reg of the normal law [mm], and friction (none: frictionless).
+  void set_laws(double regularization, std::optional<FrictionLaw> friction, ResponseOptions options = {});
+
+  ContactGeometry& geometry() { return geometry_; }
+  const ContactGeometry& geometry() const { return geometry_; }
+  std::vector<double>& zone_penalty() { return penalty_; }
+  const std::vector<double>& zone_penalty() const { return penalty_; }
+  /// Committed g_rev per contact element [mm].
+  const std::vector<Eigen::Vector3d>& reversible_committed() const { return reversible_committed_; }
+  /// Per contact element, at the last evaluation.
+  const std::vector<ContactState>& states() const { return states_; }
+  /// Restores the states of a saved run (one per element).
+  void set_states(std::vector<ContactState> states) { states_ = std::move(states); }
+
+ private:
+  const model::Model& model_;
+  ContactGeometry geometry_;
+  std::vector<double> penalty_;
+  std::vector<Eigen::Vector3d> reversible_committed_;
+  std::vector<ContactState> states_;
+  double regularization_ = 0.0;
+  std::optional<FrictionLaw> friction_;
+  ResponseOptions options_;
+};
+
+}  // namespace nodus::contact
