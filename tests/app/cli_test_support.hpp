@@ -8,8 +8,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <sstream>
 #include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
 
 namespace nodus::testing {
 
@@ -89,5 +93,50 @@ output:
   vtk_every: 2
   contact_csv: true
 )";
+
+/// The branches: `same` repeats the main run's stages after drag with its friction, `mu_0.1` moves back with
+/// less friction.
+inline const std::string kBranches = R"(branches:
+  - name: same
+    from: drag
+    stages:
+      - name: back
+        steps: 3
+        motions:
+          press: {translation: [0, 0.1, -0.1]}
+      - name: lift
+        steps: 1
+        contact_off: [tool]
+  - name: mu_0.1
+    from: drag
+    contact: {friction: 0.1}
+    stages:
+      - name: back
+        steps: 3
+        motions:
+          press: {translation: [0, 0.1, -0.1]}
+)";
+
+/// Every file under `dir` by relative path, with its content; checkpoints and summary.json (they hold wall
+/// times) left out.
+inline std::map<std::string, std::string> results(const fs::path& dir) {
+  std::map<std::string, std::string> files;
+  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string name = fs::relative(entry.path(), dir).generic_string();
+    if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
+    files[name] = read_file(entry.path());
+  }
+  return files;
+}
+
+inline void expect_same_results(const fs::path& reference, const fs::path& dir) {
+  const auto a = results(reference), b = results(dir);
+  std::vector<std::string> names_a, names_b;
+  for (const auto& [name, text] : a) names_a.push_back(name);
+  for (const auto& [name, text] : b) names_b.push_back(name);
+  ASSERT_EQ(names_a, names_b);
+  for (const auto& [name, text] : a) EXPECT_TRUE(text == b.at(name)) << name << " differs";
+}
 
 }  // namespace nodus::testing

@@ -40,28 +40,6 @@ std::string replaced(std::string text, const std::string& from, const std::strin
   return text;
 }
 
-/// Every file under `dir` by relative path, with its content; checkpoints and summary.json (they hold wall
-/// times) left out.
-std::map<std::string, std::string> results(const fs::path& dir) {
-  std::map<std::string, std::string> files;
-  for (const auto& entry : fs::recursive_directory_iterator(dir)) {
-    if (!entry.is_regular_file()) continue;
-    const std::string name = fs::relative(entry.path(), dir).generic_string();
-    if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
-    files[name] = read(entry.path());
-  }
-  return files;
-}
-
-void expect_same_results(const fs::path& reference, const fs::path& dir) {
-  const auto a = results(reference), b = results(dir);
-  std::vector<std::string> names_a, names_b;
-  for (const auto& [name, text] : a) names_a.push_back(name);
-  for (const auto& [name, text] : b) names_b.push_back(name);
-  ASSERT_EQ(names_a, names_b);
-  for (const auto& [name, text] : a) EXPECT_TRUE(text == b.at(name)) << name << " differs";
-}
-
 std::vector<std::string> lines(const std::string& text) {
   std::vector<std::string> out;
   std::istringstream in(text);
@@ -86,31 +64,11 @@ std::vector<double> column(const std::string& csv, const std::string& name) {
   return values;
 }
 
+using nodus::testing::expect_same_results;
+using nodus::testing::kBranches;
 using nodus::testing::kDrag;
+using nodus::testing::results;
 constexpr int kDragSteps = 11;  // press 3, drag 4, back 3, lift 1: no cutbacks
-
-/// The branches: `same` repeats the main run's stages after drag with its friction, `mu_0.1` moves back with
-/// less friction.
-const std::string kBranches = R"(branches:
-  - name: same
-    from: drag
-    stages:
-      - name: back
-        steps: 3
-        motions:
-          press: {translation: [0, 0.1, -0.1]}
-      - name: lift
-        steps: 1
-        contact_off: [tool]
-  - name: mu_0.1
-    from: drag
-    contact: {friction: 0.1}
-    stages:
-      - name: back
-        steps: 3
-        motions:
-          press: {translation: [0, 0.1, -0.1]}
-)";
 
 /// Runs `scenario` into DIR/`name`_ref in one go.
 fs::path reference_run(const fs::path& scenario, const std::string& name) {

@@ -1,0 +1,211 @@
+#include "nodus/run/branches.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cstring>
+#include <map>
+#include <stdexcept>
+#include <string>
+#include <thread>
+#include <utility>
+
+#include <spawn.h>
+#include <sys/wait.h>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "nodus/run/run_outputs.hpp"
+
+extern char** environ;
+
+namespace nodus::run {
+namespace {
+
+namespace fs = std::filesystem;
+
+/// How a finished branch ended, from its summary.json.
+void read_finished(const fs::path& summary, output::BranchOutcome& outcome) {
+  const output::SummaryData done = output::read_summary(summary);
+  outcome.converged = done.converged;
+  outcome.failure = done.failure;
+  outcome.steps = done.steps;
+  outcome.final_time = done.final_time;
+}
+
+}  // namespace
+
+fs::path branch_dir(const fs::path& out, const scenario::BranchSpec& branch) {
+  return out / "branches" / branch.name;
+}
+
+fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& scenario,
+                                 const scenario::BranchSpec& branch) {
+  return out / "checkpoints" /
+         output::checkpoint_file_name(branch.from,
+                                      scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
+}
+
+void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim) {
+  spdlog::error(
+      "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; "
+      "continue it with --resume",
+      request.stop_after_steps, sim.time());
+}
+
+BranchRun settled_branch(const Request& request, const scenario::Scenario& main_scenario, std::size_t b,
+                         const BranchStart& start, bool& runnable) {
+  const scenario::BranchSpec& branch = main_scenario.branches[b];
+  BranchRun run;
+  output::BranchOutcome& outcome = run.outcome;
+  outcome.name = branch.name;
+  outcome.from = main_scenario.stages.at(static_cast<std::size_t>(branch.from)).name;
+  outcome.friction = scenario::branch_scenario(main_scenario, b).contact.friction;
+  outcome.folder = "branches/" + branch.name;
+  runnable = false;
+  if (start.finished) {
+    read_finished(branch_dir(request.out, branch) / "summary.json", outcome);
+  } else if (!start.own && !fs::exists(branch_start_checkpoint(request.out, main_scenario, branch))) {
+    outcome.failure = fmt::format("not run: the main run did not reach the end of stage '{}'", outcome.from);
+    spdlog::error("branch '{}' {}", branch.name, outcome.failure);
+  } else {
+    runnable = true;
+  }
+  return run;
+}
+
+BranchRun run_branch(const Request& request, const scenario::Scenario& main_scenario, std::size_t b,
+                     const BranchStart& start, int steps_left) {
+  bool runnable = false;
+  BranchRun run = settled_branch(request, main_scenario, b, start, runnable);
+  if (!runnable) return run;
+  const scenario::BranchSpec& branch = main_scenario.branches[b];
+  output::BranchOutcome& outcome = run.outcome;
+  const fs::path from =
+      start.own ? start.own->path : branch_start_checkpoint(request.out, main_scenario, branch);
+  simulation::Simulation branch_sim(scenario::branch_scenario(main_scenario, b));
+  simulation::SimulationState state = output::read_checkpoint(from, branch_sim.scenario());
+  if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
+    throw std::runtime_error(
+        fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
+  spdlog::info("branch '{}': {} {}", branch.name, start.own ? "resuming from" : "starting from",
+               from.string());
+  branch_sim.restore(std::move(state),
+                     start.own ? simulation::StartKind::resumed : simulation::StartKind::branched);
+  RunOutputs branch_outputs(branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
+                            "branch " + branch.name + ": ");
+  const simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), {steps_left});
+  run.new_steps = summary.new_steps;
+  if (summary.interrupted) {
+    run.interrupted = true;
+    log_stopped_as_asked(request, branch_sim);
+    return run;
+  }
+  outcome.converged = summary.converged;
+  outcome.failure = summary.failure;
+  outcome.steps = summary.steps;
+  outcome.final_time = branch_sim.time();
+  spdlog::info("branch '{}': {} steps, {} Newton iterations, {:.2f} s; results in {}", branch.name,
+               summary.steps, summary.newton_iterations, summary.wall_seconds,
+               branch_dir(request.out, branch).string());
+  if (!summary.converged)
+    spdlog::error("branch '{}' stopped: {}; its last converged state is kept in {}", branch.name,
+                  summary.failure, branch_dir(request.out, branch).string());
+  return run;
+}
+
+Outcome run_one_branch(const Request& request, const scenario::Scenario& main_scenario) {
+  const auto& branches = main_scenario.branches;
+  const auto found = std::find_if(branches.begin(), branches.end(),
+                                  [&](const scenario::BranchSpec& b) { return b.name == request.branch; });
+  if (found == branches.end()) {
+    std::string names;
+    for (const scenario::BranchSpec& b : branches) names += (names.empty() ? "" : " | ") + b.name;
+    throw scenario::ScenarioError(
+        fmt::format("{}: --branch: expected the name of a branch of the scenario ({}), got {}",
+                    request.scenario_path, names.empty() ? "it has none" : names, request.branch));
+  }
+  const auto b = static_cast<std::size_t>(found - branches.begin());
+  const fs::path dir = branch_dir(request.out, *found);
+  BranchStart start;
+  if (request.resume) {
+    start.finished = fs::exists(dir / "summary.json");
+    if (!start.finished) start.own = output::newest_checkpoint(dir / "checkpoints");
+  } else {
+    fs::remove(dir / "summary.json");
+    output::remove_checkpoints(dir / "checkpoints");
+  }
+  const BranchRun run = run_branch(request, main_scenario, b, start, request.stop_after_steps);
+  Outcome outcome;
+  outcome.interrupted = run.interrupted;
+  outcome.converged = !run.interrupted && run.outcome.converged;
+  return outcome;
+}
+
+void run_branch_processes(const Request& request, const scenario::Scenario& main_scenario,
+                          const std::vector<std::size_t>& todo, const std::vector<BranchStart>& starts,
+                          std::size_t jobs, std::vector<BranchRun>& runs) {
+  std::map<pid_t, std::size_t> running;
+  std::size_t next = 0;
+  const auto finish = [&](pid_t pid, int status) {
+    const std::size_t b = running.at(pid);
+    running.erase(pid);
+    const scenario::BranchSpec& branch = main_scenario.branches[b];
+    output::BranchOutcome& outcome = runs[b].outcome;
+    const fs::path summary = branch_dir(request.out, branch) / "summary.json";
+    if (fs::exists(summary)) {
+      read_finished(summary, outcome);
+    } else {
+      outcome.failure = WIFEXITED(status)
+                            ? fmt::format("its process exited with status {}", WEXITSTATUS(status))
+                            : fmt::format("its process was killed by signal {}", WTERMSIG(status));
+      spdlog::error("branch '{}': {}", branch.name, outcome.failure);
+    }
+  };
+  while (next < todo.size() || !running.empty()) {
+    if (next < todo.size() && running.size() < jobs) {
+      const std::size_t b = todo[next++];
+      std::vector<std::string> args = {"nodus",
+                                       "run",
+                                       request.scenario_path,
+                                       "--out",
+                                       request.out.string(),
+                                       "--branch",
+                                       main_scenario.branches[b].name,
+                                       "--jobs",
+                                       "1"};
+      if (starts[b].own) args.emplace_back("--resume");
+      if (request.quiet) args.emplace_back("--quiet");
+      if (request.verbose) args.emplace_back("--verbose");
+      std::vector<char*> argv;
+      for (std::string& a : args) argv.push_back(a.data());
+      argv.push_back(nullptr);
+      pid_t pid = 0;
+      const int error =
+          posix_spawn(&pid, request.branch_executable.c_str(), nullptr, nullptr, argv.data(), environ);
+      if (error != 0)
+        throw std::runtime_error(fmt::format("could not start the process of branch '{}': {}",
+                                             main_scenario.branches[b].name, std::strerror(error)));
+      running[pid] = b;
+      continue;
+    }
+    // Only our own children are waited for (a library caller may have others): each is polled, then a short
+    // sleep; branches last seconds to hours.
+    bool reaped = false;
+    for (auto it = running.begin(); it != running.end() && !reaped; ++it) {
+      int status = 0;
+      const pid_t pid = waitpid(it->first, &status, WNOHANG);
+      if (pid < 0 && errno == EINTR) break;
+      if (pid < 0)
+        throw std::runtime_error(fmt::format("waiting for the branch processes: {}", std::strerror(errno)));
+      if (pid == it->first) {
+        finish(pid, status);
+        reaped = true;
+      }
+    }
+    if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
+}  // namespace nodus::run

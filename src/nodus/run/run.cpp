@@ -1,0 +1,152 @@
+#include "nodus/run/run.hpp"
+
+#include <algorithm>
+#include <optional>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <spdlog/spdlog.h>
+
+#include "nodus/output/checkpoint.hpp"
+#include "nodus/output/summary_writer.hpp"
+#include "nodus/run/branches.hpp"
+#include "nodus/run/run_outputs.hpp"
+#include "nodus/simulation/simulation.hpp"
+
+namespace nodus::run {
+namespace {
+
+namespace fs = std::filesystem;
+
+std::string describe_position(const output::CheckpointInfo& info, const scenario::Scenario& scenario) {
+  const auto& stages = scenario.stages;
+  const std::string where =
+      info.stage_begun
+          ? fmt::format("inside stage '{}'", stages.at(static_cast<std::size_t>(info.stage)).name)
+      : info.stage == 0
+          ? std::string("at the start")
+          : fmt::format("at the end of stage '{}'", stages.at(static_cast<std::size_t>(info.stage - 1)).name);
+  return fmt::format("step {}, load time {:.6g} s, {}", info.steps, info.time, where);
+}
+
+}  // namespace
+
+Outcome run(const Request& request) {
+  return run(scenario::read_scenario(request.scenario_path), request);
+}
+
+Outcome run(scenario::Scenario scenario, const Request& request) {
+  if (!request.quiet && request.branch.empty())
+    spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, scenario::describe(scenario));
+  // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
+  // in the stages or in a branch); it happens before anything is written.
+  simulation::Simulation sim(std::move(scenario));
+  const scenario::Scenario& main_scenario = sim.scenario();
+  const fs::path& out = request.out;
+  if (!request.branch.empty()) return run_one_branch(request, main_scenario);
+
+  // With resume, everything that is read back is read and checked before anything is written.
+  std::optional<simulation::SimulationState> resumed;
+  std::vector<BranchStart> branch_starts(main_scenario.branches.size());
+  if (request.resume) {
+    if (fs::exists(out / "summary.json")) {
+      const output::SummaryData done = output::read_summary(out / "summary.json");
+      spdlog::info("the run in {} is already complete ({}); nothing to resume", out.string(),
+                   done.converged ? "converged" : "stopped: " + done.failure);
+      return {done.converged, false, true};
+    }
+    const auto newest = output::newest_checkpoint(out / "checkpoints");
+    if (!newest)
+      throw scenario::ScenarioError(fmt::format(
+          "{}: --resume: expected a checkpoint (*.nodus-state) in {}, got none: nothing to resume "
+          "(run without --resume to start the run)",
+          out.string(), (out / "checkpoints").string()));
+    resumed = output::read_checkpoint(newest->path, main_scenario);
+    spdlog::info("resuming from {} ({})", newest->path.string(), describe_position(*newest, main_scenario));
+    for (std::size_t b = 0; b < main_scenario.branches.size(); ++b) {
+      const scenario::BranchSpec& branch = main_scenario.branches[b];
+      const scenario::Scenario branch_scenario = scenario::branch_scenario(main_scenario, b);
+      BranchStart& start = branch_starts[b];
+      start.finished = fs::exists(branch_dir(out, branch) / "summary.json");
+      if (start.finished) continue;
+      start.own = output::newest_checkpoint(branch_dir(out, branch) / "checkpoints");
+      const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
+      if (fs::exists(from)) output::read_checkpoint(from, branch_scenario);  // checks it
+    }
+  }
+
+  // From here on, files are written.
+  fs::create_directories(out);
+  if (resumed) {
+    sim.restore(std::move(*resumed), simulation::StartKind::resumed);
+  } else {
+    // Branch results of an earlier run must not pass for finished or resumable ones.
+    for (const scenario::BranchSpec& branch : main_scenario.branches) {
+      fs::remove(branch_dir(out, branch) / "summary.json");
+      output::remove_checkpoints(branch_dir(out, branch) / "checkpoints");
+    }
+  }
+  int steps_left = request.stop_after_steps;
+
+  RunOutputs outputs(out, main_scenario, request.quiet, main_scenario.branches.empty());
+  const simulation::RunSummary summary = sim.run(outputs.observers(), {steps_left});
+  Outcome outcome;
+  if (summary.interrupted) {
+    log_stopped_as_asked(request, sim);
+    outcome.interrupted = true;
+    return outcome;
+  }
+  if (steps_left > 0) steps_left -= summary.new_steps;
+  spdlog::info("{} steps, {} Newton iterations, {:.2f} s; results in {}", summary.steps,
+               summary.newton_iterations, summary.wall_seconds, out.string());
+  outcome.converged = summary.converged;
+  if (!summary.converged)
+    spdlog::error("run stopped: {}; the last converged state (load time {:.6g} s) is kept in {}",
+                  summary.failure, sim.time(), out.string());
+
+  if (main_scenario.branches.empty()) return outcome;
+
+  // The branches, side by side in up to `jobs` processes; one at a time, in this process, when a step count
+  // is to stop the run or no executable is given for the processes.
+  const std::size_t count = main_scenario.branches.size();
+  const std::size_t jobs = request.stop_after_steps > 0 || request.branch_executable.empty()
+                               ? 1
+                               : std::min(count, static_cast<std::size_t>(std::max(1, request.jobs)));
+  std::vector<BranchRun> runs(count);
+  if (jobs <= 1) {
+    for (std::size_t b = 0; b < count; ++b) {
+      runs[b] = run_branch(request, main_scenario, b, branch_starts[b], steps_left);
+      if (runs[b].interrupted) {
+        outcome.converged = false;
+        outcome.interrupted = true;
+        return outcome;
+      }
+      if (steps_left > 0) steps_left -= runs[b].new_steps;
+    }
+  } else {
+    std::vector<std::size_t> todo;
+    for (std::size_t b = 0; b < count; ++b) {
+      bool runnable = false;
+      runs[b] = settled_branch(request, main_scenario, b, branch_starts[b], runnable);
+      if (runnable) todo.push_back(b);
+    }
+    if (!todo.empty())
+      spdlog::info("{} branches to run, {} at a time, each in its own process", todo.size(),
+                   std::min(jobs, todo.size()));
+    run_branch_processes(request, main_scenario, todo, branch_starts, jobs, runs);
+  }
+  std::vector<output::BranchOutcome> outcomes;
+  for (BranchRun& r : runs) {
+    outcome.converged = outcome.converged && r.outcome.converged;
+    outcomes.push_back(std::move(r.outcome));
+  }
+  // The main run's summary, written last: it lists the branches and marks the whole run as finished.
+  output::SummaryData data = *outputs.summary().data();
+  data.branches = std::move(outcomes);
+  output::write_summary(out / "summary.json", data);
+  return outcome;
+}
+
+}  // namespace nodus::run

@@ -1,0 +1,22 @@
+#include "nodus/run/run_outputs.hpp"
+
+#include <utility>
+
+namespace nodus::run {
+
+RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenario& scenario, bool quiet,
+                       bool write_summary, std::string label)
+    : steps_(dir),
+      vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
+      final_nodes_(dir),
+      contact_tables_(dir),
+      stage_ends_(dir),
+      summary_(dir, write_summary),
+      checkpoints_(dir, scenario.output.checkpoint_every),
+      progress_(scenario.output.progress_seconds, std::move(label)) {
+  // The checkpoint comes after the files of its step, so that they are complete up to it.
+  observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
+  if (!quiet) observers_.push_back(&progress_);
+}
+
+}  // namespace nodus::run

@@ -1,0 +1,47 @@
+#pragma once
+/// The output writers of one run (the main run, or a branch) into a folder, as the observers of its
+/// Simulation: steps.csv, VTK, final nodes, contact tables, stage-end files, summary.json, checkpoints and
+/// the progress line (docs/output.md).
+
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "nodus/output/checkpoint.hpp"
+#include "nodus/output/contact_csv_writer.hpp"
+#include "nodus/output/final_nodes_writer.hpp"
+#include "nodus/output/progress_reporter.hpp"
+#include "nodus/output/stage_end_writer.hpp"
+#include "nodus/output/steps_csv_writer.hpp"
+#include "nodus/output/summary_writer.hpp"
+#include "nodus/output/vtk_writer.hpp"
+#include "nodus/scenario/scenario.hpp"
+#include "nodus/simulation/simulation.hpp"
+
+namespace nodus::run {
+
+class RunOutputs {
+ public:
+  /// `write_summary`: whether summary.json is written at the end (the main run of a scenario with branches
+  /// writes it itself, after them); `label` prefixes the progress lines.
+  RunOutputs(const std::filesystem::path& dir, const scenario::Scenario& scenario, bool quiet,
+             bool write_summary, std::string label = {});
+  RunOutputs(const RunOutputs&) = delete;
+  RunOutputs& operator=(const RunOutputs&) = delete;
+
+  const std::vector<simulation::StepObserver*>& observers() const { return observers_; }
+  const output::SummaryWriter& summary() const { return summary_; }
+
+ private:
+  output::StepsCsvWriter steps_;
+  output::VtkSeriesWriter vtk_;
+  output::FinalNodesWriter final_nodes_;
+  output::ContactCsvWriter contact_tables_;
+  output::StageEndWriter stage_ends_;
+  output::SummaryWriter summary_;
+  output::CheckpointWriter checkpoints_;
+  output::ProgressReporter progress_;
+  std::vector<simulation::StepObserver*> observers_;
+};
+
+}  // namespace nodus::run
