@@ -39,6 +39,7 @@
 #include "nodus/output/final_nodes_table.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/logging.hpp"
+#include "nodus/output/output_folder.hpp"
 #include "nodus/output/progress_reporter.hpp"
 #include "nodus/output/stage_end_writer.hpp"
 #include "nodus/output/steps_csv_writer.hpp"
@@ -237,6 +238,7 @@ int run_one_branch(const RunRequest& request, const nodus::scenario::Scenario& m
   }
   const auto b = static_cast<std::size_t>(found - branches.begin());
   const fs::path dir = branch_dir(request, *found);
+  nodus::output::remove_stale_temporary_files(dir);  // left by a killed run
   BranchStart start;
   if (request.resume) {
     start.finished = fs::exists(dir / "summary.json");
@@ -309,6 +311,7 @@ void run_branch_processes(const RunRequest& request, const nodus::scenario::Scen
 }
 
 int run(const RunRequest& request) {
+  nodus::output::check_output_folder(request.out);
   nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(request.scenario_path);
   if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, nodus::scenario::describe(scenario));
@@ -351,6 +354,7 @@ int run(const RunRequest& request) {
 
   // From here on, files are written.
   fs::create_directories(out);
+  nodus::output::remove_stale_temporary_files(out);  // left by a killed run
   if (resumed) {
     sim.restore(std::move(*resumed), nodus::simulation::StartKind::resumed);
   } else {

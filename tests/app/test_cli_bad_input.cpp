@@ -1,5 +1,5 @@
-// Bad input that used to get through the command line: bytes that are not UTF-8, a second YAML document and
-// a file far too large to be a scenario. Each gives one line
+// Bad input that used to get through the command line: bytes that are not UTF-8, a second YAML document, a
+// file far too large to be a scenario, and --out naming a file or a path under one. Each gives one line
 // (file, line, what was expected), exit status 2, no settings echo before it, and nothing written.
 
 #include <gtest/gtest.h>
@@ -84,6 +84,28 @@ TEST(CliBadInput, AFileFarTooLarge) {
           ":0: file: expected a scenario file of at most 16777216 bytes (16 MiB), got 50000000 bytes");
   EXPECT_FALSE(fs::exists(out));
   fs::remove(file);
+}
+
+TEST(CliBadInput, OutIsAFileOrUnderAFile) {
+  const fs::path file = write("good_for_out.yaml", kGood);
+  const fs::path taken = write("taken.txt", "a file of the user's\n");
+  expect_refused(
+      file, taken,
+      taken.string() +
+          ": --out: expected a folder, or a path where one can be created, got an existing file that "
+          "is not a folder");
+  expect_refused(
+      file, taken / "results",
+      (taken / "results").string() +
+          ": --out: expected a folder, or a path where one can be created, got a path under the file '" +
+          taken.string() + "'");
+  EXPECT_EQ(nodus::testing::read_file(taken), "a file of the user's\n");
+  // With --resume and --branch as well.
+  for (const std::string extra : {" --resume", " --branch b", " -q"}) {
+    const Result r = run_nodus("run " + file.string() + " --out " + taken.string() + extra);
+    EXPECT_EQ(r.status, 2) << extra << ": " << r.err;
+    EXPECT_EQ(std::count(r.err.begin(), r.err.end(), '\n'), 1) << extra << ": " << r.err;
+  }
 }
 
 }  // namespace
