@@ -271,6 +271,57 @@ TEST(Branches, ResumeInsideABranch) {
   EXPECT_EQ(read(out / "summary.json").find("\"converged\": false"), std::string::npos);
 }
 
+/// Leaves in `path` what a run killed while writing it through AtomicFile leaves: the first half of `content`
+/// in "TARGET.tmpPID" next to it; PID 4194304 is above the largest pid Linux hands out (pid_max <= 2^22), so
+/// no live process can own the file.
+fs::path leave_temporary_file(const fs::path& target, const std::string& content) {
+  fs::path temp = target;
+  temp += ".tmp4194304";
+  fs::create_directories(temp.parent_path());
+  std::ofstream(temp, std::ios::binary) << content.substr(0, content.size() / 2);
+  return temp;
+}
+
+TEST(Resume, RemovesTemporaryFilesOfAKilledRun) {
+  const fs::path scenario = write("stale.yaml", kDrag + kBranches);
+  const fs::path reference = reference_run(scenario, "stale");
+  const std::string vtp = read(reference / "vtk" / "step_000006.vtp");
+  const std::string state = read(reference / "checkpoints" / "001_drag.nodus-state");
+
+  // Killed after step 5, inside drag, while writing the picture of step 6, the stage-end files of drag and
+  // a branch's files (from an earlier run into the same folder).
+  const fs::path out = scratch() / "stale";
+  fs::remove_all(out);
+  const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+  ASSERT_EQ(run_nodus(run + " --stop-after-steps 5").status, 3);
+  const std::vector<fs::path> stale = {
+      leave_temporary_file(out / "vtk" / "step_000006.vtp", vtp),
+      leave_temporary_file(out / "result.pvd", read(reference / "result.pvd")),
+      leave_temporary_file(out / "stages" / "001_drag_nodes.csv",
+                           read(reference / "stages" / "001_drag_nodes.csv")),
+      leave_temporary_file(out / "checkpoints" / "001_drag.nodus-state", state),
+      leave_temporary_file(out / "branches" / "same" / "vtk" / "step_000012.vtp",
+                           read(reference / "branches" / "same" / "vtk" / "step_000012.vtp")),
+  };
+  const Result resumed = run_nodus(run + " --resume");
+  EXPECT_EQ(resumed.status, 0) << resumed.err;
+  EXPECT_NE(resumed.err.find("removed 5 temporary file(s) left by an interrupted run in " + out.string()),
+            std::string::npos)
+      << resumed.err;
+  for (const fs::path& p : stale) EXPECT_FALSE(fs::exists(p)) << p;
+  expect_same_results(reference, out);  // compares every file but checkpoints/ and summary.json, by name too
+
+  // A fresh run into the finished folder clears them too.
+  const fs::path again = leave_temporary_file(out / "final_nodes.csv", read(reference / "final_nodes.csv"));
+  const fs::path branch_state =
+      leave_temporary_file(out / "branches" / "mu_0.1" / "checkpoints" / "000_press.nodus-state", state);
+  const Result fresh = run_nodus(run);
+  EXPECT_EQ(fresh.status, 0) << fresh.err;
+  EXPECT_FALSE(fs::exists(again));
+  EXPECT_FALSE(fs::exists(branch_state));
+  expect_same_results(reference, out);
+}
+
 TEST(Resume, BadInputIsRefusedAndChangesNothing) {
   const fs::path scenario = write("bad_base.yaml", kDrag);
   const fs::path out = scratch() / "bad_out";

@@ -1,5 +1,6 @@
 #include "nodus/output/atomic_file.hpp"
 
+#include <regex>
 #include <stdexcept>
 #include <system_error>
 
@@ -7,10 +8,19 @@
 
 namespace nodus::output {
 
-AtomicFile::AtomicFile(std::filesystem::path path) : path_(std::move(path)) {
-  // The pid keeps two processes writing into the same folder from sharing a temporary file.
-  temp_ = path_;
-  temp_ += ".tmp" + std::to_string(::getpid());
+std::filesystem::path temporary_path(const std::filesystem::path& path, long pid) {
+  std::filesystem::path temp = path;
+  temp += ".tmp" + std::to_string(pid);
+  return temp;
+}
+
+bool is_temporary_file_name(std::string_view file_name) {
+  static const std::regex pattern(R"(.+\.(csv|vtp|pvd|json|nodus-state)\.tmp[0-9]+)");
+  return std::regex_match(file_name.begin(), file_name.end(), pattern);
+}
+
+AtomicFile::AtomicFile(std::filesystem::path path)
+    : path_(std::move(path)), temp_(temporary_path(path_, static_cast<long>(::getpid()))) {
   out_.open(temp_, std::ios::binary | std::ios::trunc);
   if (!out_)
     throw std::runtime_error("cannot open '" + temp_.string() + "' for writing (for '" + path_.string() +

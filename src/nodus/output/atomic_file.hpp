@@ -31,6 +31,15 @@ class AtomicFile {
   bool committed_ = false;
 };
 
+/// The temporary file of AtomicFile for target `path` written by process `pid`: "TARGET.tmpPID" next to it
+/// (the pid keeps two processes writing into the same folder from sharing a temporary file).
+std::filesystem::path temporary_path(const std::filesystem::path& path, long pid);
+
+/// Whether `file_name` (a name, no folder) is that of a temporary file of AtomicFile for one of nodus's
+/// output files: "NAME.EXT.tmpPID" with EXT one of csv, vtp, pvd, json, nodus-state. A run killed while
+/// writing leaves such a file behind (see remove_stale_temporary_files in output_folder.hpp).
+bool is_temporary_file_name(std::string_view file_name);
+
 /// Writes `content` as the whole of file `path` through a temporary file and a rename.
 void write_file_atomically(const std::filesystem::path& path, std::string_view content);
 

@@ -16,6 +16,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/output/output_folder.hpp"
 #include "nodus/run/run_outputs.hpp"
 
 extern char** environ;
@@ -128,6 +129,7 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   }
   const auto b = static_cast<std::size_t>(found - branches.begin());
   const fs::path dir = branch_dir(request.out, *found);
+  output::remove_stale_temporary_files(dir);  // left by a killed run
   BranchStart start;
   if (request.resume) {
     start.finished = fs::exists(dir / "summary.json");

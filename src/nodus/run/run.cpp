@@ -10,6 +10,7 @@
 #include <spdlog/spdlog.h>
 
 #include "nodus/output/checkpoint.hpp"
+#include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/run/branches.hpp"
 #include "nodus/run/run_outputs.hpp"
@@ -34,10 +35,12 @@ std::string describe_position(const output::CheckpointInfo& info, const scenario
 }  // namespace
 
 Outcome run(const Request& request) {
+  output::check_output_folder(request.out);  // before the scenario is read and echoed
   return run(scenario::read_scenario(request.scenario_path), request);
 }
 
 Outcome run(scenario::Scenario scenario, const Request& request) {
+  output::check_output_folder(request.out);
   if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, scenario::describe(scenario));
   // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
@@ -79,6 +82,7 @@ Outcome run(scenario::Scenario scenario, const Request& request) {
 
   // From here on, files are written.
   fs::create_directories(out);
+  output::remove_stale_temporary_files(out);  // left by a killed run
   if (resumed) {
     sim.restore(std::move(*resumed), simulation::StartKind::resumed);
   } else {

@@ -2,16 +2,11 @@
 
 #include <algorithm>
 #include <cctype>
-#include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstring>
-#include <filesystem>
-#include <fstream>
 #include <limits>
 #include <map>
 #include <optional>
-#include <sstream>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -22,6 +17,7 @@
 #include <Eigen/Geometry>
 
 #include "nodus/scenario/keys.hpp"
+#include "nodus/scenario/yaml_input.hpp"
 
 namespace nodus::scenario {
 
@@ -1127,6 +1123,8 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
 
 Scenario parse_scenario(const std::string& yaml_text, const std::string& path) {
   const Reader reader(path);
+  // Encoding, a single document and the number of nodes, before yaml-cpp builds its tree.
+  check_yaml_input(yaml_text, path);
   YAML::Node root;
   try {
     root = YAML::Load(yaml_text);
@@ -1142,16 +1140,7 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& path) {
 }
 
 Scenario read_scenario(const std::string& path) {
-  const Reader reader(path);
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error))
-    reader.fail(0, "file", "a readable file", "cannot open: a directory");
-  std::ifstream file(path, std::ios::binary);
-  if (!file) reader.fail(0, "file", "a readable file", std::string("cannot open: ") + std::strerror(errno));
-  std::ostringstream text;
-  text << file.rdbuf();
-  if (file.bad()) reader.fail(0, "file", "a readable file", "cannot read it");
-  return parse_scenario(text.str(), path);
+  return parse_scenario(read_scenario_text(path), path);
 }
 
 std::string describe(const Scenario& scenario) {
