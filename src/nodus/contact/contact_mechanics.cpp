@@ -4,42 +4,6 @@
 
 namespace nodus::contact {
 
-double normal_reaction(const NormalLaw& law, double gap) {
-  if (gap >= 0.0) return 0.0;
-  const double k = law.penalty, p = law.regularization;
-  if (gap >= -p) return k * gap * gap / (2.0 * p);
-  return -k * (gap + 0.5 * p);
-}
-
-double normal_stiffness(const NormalLaw& law, double gap) {
-  if (gap >= 0.0) return 0.0;
-  const double k = law.penalty, p = law.regularization;
-  if (gap >= -p) return -k * gap / p;
-  return k;
-}
-
-FrictionResponse friction_response(const FrictionLaw& law, double normal_reaction, const Eigen::Vector3d& n,
-                                   const Eigen::Vector3d& reversible_committed, const Eigen::Vector3d& du) {
-  FrictionResponse r;
-  if (!(law.coefficient > 0.0) || !(normal_reaction > 0.0)) return r;  // apart: no force, no memory
-  const Mat3 tangential = Mat3::Identity() - n * n.transpose();
-  const Eigen::Vector3d trial = tangential * (reversible_committed + du);
-  const double size = trial.norm(), g_max = law.max_reversible;
-  const double scale = law.coefficient * normal_reaction;
-  if (size <= g_max) {  // stick
-    r.reversible = trial;
-    r.force = -scale / g_max * trial;
-    r.stiffness = scale / g_max * tangential;
-  } else {  // slip
-    const Eigen::Vector3d t = trial / size;
-    r.reversible = g_max * t;
-    r.force = -scale * t;
-    r.stiffness = scale / size * (Mat3::Identity() - t * t.transpose()) * tangential;
-    r.slip = true;
-  }
-  return r;
-}
-
 ParticleMap particle_map(const Particle& p) {
   const beam::QuadraticShape shape = beam::quadratic_shape(p.local);
   ParticleMap b = ParticleMap::Zero();

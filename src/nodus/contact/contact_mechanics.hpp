@@ -1,8 +1,8 @@
 #pragma once
-/// The mechanics of one contact element [Durville 2012, Sect. 5, Eq. 49-79]: the regularised penalty law of
-/// the normal reaction (Eq. 53), regularised Coulomb friction with a reversible tangential displacement as
-/// history variable (Eq. 55-64), and the element's contributions to the residual and the tangent over the 54
-/// unknowns of the two beam elements that carry its particles (Eq. 65-79).
+/// The mechanics of one contact element [Durville 2012, Sect. 5, Eq. 49-79]: with the normal law
+/// (penalty_law.hpp, Eq. 53) and the friction law (friction_law.hpp, Eq. 55-64), the element's contributions
+/// to the residual and the tangent over the 54 unknowns of the two beam elements that carry its particles
+/// (Eq. 65-79).
 ///
 /// Conventions (docs/contact.md): the normal n points from the particle on I to the particle on J; the gap
 /// is <x_J - x_I, n>, negative when the surfaces overlap; the normal reaction R_N >= 0 pushes J along +n and
@@ -12,6 +12,8 @@
 
 #include "nodus/beam/beam_element.hpp"
 #include "nodus/contact/detection.hpp"
+#include "nodus/contact/friction_law.hpp"
+#include "nodus/contact/penalty_law.hpp"
 
 namespace nodus::contact {
 
@@ -19,39 +21,6 @@ using Mat3 = Eigen::Matrix3d;
 using ParticleMap = Eigen::Matrix<double, 3, beam::kElementDofs>;
 using PairVector = Eigen::Matrix<double, 2 * beam::kElementDofs, 1>;
 using PairMatrix = Eigen::Matrix<double, 2 * beam::kElementDofs, 2 * beam::kElementDofs>;
-
-/// The quadratic regularisation of the penalty (Eq. 53).
-struct NormalLaw {
-  double penalty = 0.0;         ///< k_c [N/mm], > 0
-  double regularization = 0.0;  ///< p_reg [mm], > 0
-};
-
-/// R_N [N]: 0 for gap >= 0; k gap^2 / (2 p_reg) for -p_reg <= gap <= 0; -k (gap + p_reg / 2) below. C1.
-double normal_reaction(const NormalLaw& law, double gap);
-/// -dR_N/dgap >= 0 [N/mm].
-double normal_stiffness(const NormalLaw& law, double gap);
-
-/// Regularised Coulomb friction (Eq. 55-64).
-struct FrictionLaw {
-  double coefficient = 0.0;     ///< mu [-], >= 0
-  double max_reversible = 0.0;  ///< g_rev_max [mm], > 0: the tangential displacement before sliding
-};
-
-/// The result of the return mapping of one contact element.
-struct FrictionResponse {
-  Eigen::Vector3d reversible = Eigen::Vector3d::Zero();  ///< g_rev at the end of the step [mm]
-  Eigen::Vector3d force = Eigen::Vector3d::Zero();       ///< tangential force on J [N]; -force acts on I
-  Mat3 stiffness = Mat3::Zero();  ///< -d force / d(relative displacement) [N/mm], R_N held fixed
-  bool slip = false;
-};
-
-/// Return mapping (Eq. 59-64): trial g_tr = g_rev_n + (I - n n) du, with du the increment of the relative
-/// displacement of the two particles since the committed state and g_rev_n the committed reversible
-/// displacement (projected on the plane normal to n); stick if |g_tr| <= g_rev_max, else slip with
-/// g_rev = g_rev_max g_tr / |g_tr|. The force on J is -mu R_N g_rev / g_rev_max. With mu = 0 or R_N = 0
-/// (surfaces apart): no force, and g_rev = 0 (no memory of an earlier contact).
-FrictionResponse friction_response(const FrictionLaw& law, double normal_reaction, const Eigen::Vector3d& n,
-                                   const Eigen::Vector3d& reversible_committed, const Eigen::Vector3d& du);
 
 /// The 3 x 27 matrix B of a particle: its position is B q for the 27 unknowns q of its element (Eq. 65-67).
 ParticleMap particle_map(const Particle& p);
