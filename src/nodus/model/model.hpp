@@ -31,6 +31,10 @@ class Model {
   int num_nodes() const { return num_nodes_; }
   int num_dofs() const { return kDofsPerNode * num_nodes_; }
   int num_elements() const { return static_cast<int>(elements_.size()); }
+  /// Global index of the first element of beam `b` (elements are numbered beam after beam).
+  int first_element(int b) const { return first_element_[static_cast<std::size_t>(b)]; }
+  /// The beam of global element `element`.
+  int element_beam(int element) const { return elements_[static_cast<std::size_t>(element)].beam; }
   int gauss_points() const { return gauss_points_; }
 
   /// Reference configuration (nine values per node).
@@ -62,6 +66,7 @@ class Model {
   std::vector<beam::Beam> beams_;
   std::vector<beam::ElementProperties> properties_;  ///< one per beam
   std::vector<Element> elements_;
+  std::vector<int> first_element_;  ///< per beam: global index of its first element
   Eigen::VectorXd reference_;
   int num_nodes_ = 0;
 };
