@@ -128,6 +128,14 @@ struct OutputSettings {
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
 };
 
+/// How Newton's tangent linearises the friction force [Durville 2012, Sect. 5.3]; the force itself is the
+/// same.
+enum class FrictionTangent {
+  frozen,   ///< R_N held fixed in the friction tangent: symmetric (any linear solver)
+  varying,  ///< the exact derivative with R_N varying: not symmetric, needs LU (solver.linear_solver:
+            ///< umfpack)
+};
+
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
 /// "auto": derived from the radii and element lengths when the simulation starts.
 struct ContactSettings {
@@ -146,6 +154,7 @@ struct ContactSettings {
   double regularization = 0.0;       ///< p_reg [mm], auto if <= 0
   double friction = 0.0;             ///< mu [-], >= 0
   double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
+  FrictionTangent friction_tangent = FrictionTangent::frozen;
   /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
   /// paper's fixed material particles (fixed).
   bool facing_particles = false;

@@ -24,7 +24,8 @@ struct ContactLawSettings {
   double max_penetration = 0.0;  ///< p_max [mm]
   double regularization = 0.0;   ///< p_reg [mm]
   std::optional<contact::FrictionLaw> friction;
-  /// Linearise friction with R_N varying (a non-symmetric tangent): set when the linear solver is LU.
+  /// Linearise friction with R_N varying (a non-symmetric tangent, needs an LU solver;
+  /// contact.friction_tangent: varying); false: R_N held fixed in the friction tangent (symmetric).
   bool friction_normal_coupling = false;
   /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
   bool facing_particles = false;

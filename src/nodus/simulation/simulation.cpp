@@ -140,8 +140,8 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   if (c.friction > 0.0)
     laws.friction = contact::FrictionLaw{
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
-  // The friction tangent with R_N varying is not symmetric: CHOLMOD reads only the upper triangle.
-  laws.friction_normal_coupling = s.solver.linear_solver == scenario::LinearSolverKind::umfpack;
+  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack) only.
+  laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
   laws.max_normal_iterations = c.max_normal_iterations;
