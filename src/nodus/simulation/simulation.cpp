@@ -327,6 +327,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     const double t1 = progress_.stage_start_time + stage.duration;
     problem_->set_stabilization(
         {progress_.stage_start_time, t1, stage.stabilization, stage.stabilization_end});
+    bool warned_capped = false;  // a step of this stage ended a contact loop at its cap (warned once)
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
     const solver::AdvanceResult result = solver::advance(
@@ -353,6 +354,26 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             record.normal_force = c.normal_force;
             record.tangential_force = c.tangential_force;
             record.slipping = c.slipping;
+            record.loops_converged = c.loops_converged();
+            if (!record.loops_converged && !warned_capped) {
+              warned_capped = true;
+              const std::string loop2 = fmt::format(
+                  "loop 2 (detections) stopped at contact.max_detections = {} before meeting its criterion",
+                  laws_.max_detections);
+              const std::string loop3 = fmt::format(
+                  "loop 3 (normal directions) stopped at contact.max_normal_iterations = {} before meeting "
+                  "its "
+                  "criterion",
+                  laws_.max_normal_iterations);
+              const std::string loops = c.detections_capped && c.normals_capped ? loop2 + ", and " + loop3
+                                        : c.detections_capped                   ? loop2
+                                                                                : loop3;
+              spdlog::warn(
+                  "stage '{}', step {}: contact {} (steps.csv: loops_converged = 0; not repeated for later "
+                  "steps "
+                  "of this stage)",
+                  stage.name, record.step, loops);
+            }
           } else {
             detect_contact();
           }
