@@ -36,6 +36,7 @@ class Model {
   /// The beam of global element `element`.
   int element_beam(int element) const { return elements_[static_cast<std::size_t>(element)].beam; }
   int gauss_points() const { return gauss_points_; }
+  double fold_stiffness() const { return fold_stiffness_; }
 
   /// Reference configuration (nine values per node).
   const Eigen::VectorXd& reference() const { return reference_; }
