@@ -123,7 +123,9 @@ TEST(ContactLoops, LoopThreeAtItsCapIsFlaggedAndWarnedOncePerStage) {
     if (s.stage < 2) ++with_tool;
     if (!s.loops_converged) ++flagged;
     // Without the tool (stage lift) no contact element is left: nothing to turn, loop 3 converged at once.
-    if (s.stage == 2) EXPECT_TRUE(s.loops_converged);
+    if (s.stage == 2) {
+      EXPECT_TRUE(s.loops_converged) << "step " << s.step;
+    }
   }
   // The beam bends under the tool in every step of press and drag, turning the normals.
   EXPECT_EQ(flagged, with_tool);
