@@ -137,12 +137,11 @@ struct OutputSettings {
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
 };
 
-/// How Newton's tangent linearises the friction force [Durville 2012, Sect. 5.3]; the force itself is the
-/// same.
+/// How Newton's tangent linearises the friction force (contact.friction_tangent; docs/contact.md). The force
+/// itself is the same either way.
 enum class FrictionTangent {
-  frozen,   ///< R_N held fixed in the friction tangent: symmetric (any linear solver)
-  varying,  ///< the exact derivative with R_N varying: not symmetric, needs LU (solver.linear_solver:
-            ///< umfpack)
+  frozen,   ///< R_N held fixed, as in Durville 2012, Sect. 5.3: symmetric, any linear solver
+  varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack)
 };
 
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean

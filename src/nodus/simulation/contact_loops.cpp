@@ -203,7 +203,7 @@ solver::NewtonReport ContactLoops::solve() {
           spdlog::debug(
               "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
               "up to {:.2e} rad{}",
-              laws_.max_normal_iterations, turn, off ? ", penalties be adjusted" : "");
+              laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
         break;
       }
       spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
