@@ -365,14 +365,14 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                   "its "
                   "criterion",
                   laws_.max_normal_iterations);
-              const std::string loops = c.detections_capped && c.normals_capped ? loop2 + ", and " + loop3
-                                        : c.detections_capped                   ? loop2
-                                                                                : loop3;
+              const std::string capped = c.detections_capped && c.normals_capped ? loop2 + ", and " + loop3
+                                         : c.detections_capped                   ? loop2
+                                                                                 : loop3;
               spdlog::warn(
                   "stage '{}', step {}: contact {} (steps.csv: loops_converged = 0; not repeated for later "
                   "steps "
                   "of this stage)",
-                  stage.name, record.step, loops);
+                  stage.name, record.step, capped);
             }
           } else {
             detect_contact();
