@@ -1,10 +1,12 @@
 // Contact detection against exact geometric answers [Durville 2012, Eq. 24-48]: crossings, parallel and
 // antiparallel beams, a double helix, self-contact in a loop and a hairpin, the proximity limit, and the
-// invariances under renumbering and rigid motion.
+// invariances under renumbering and rigid motion; the update of the normals, which reads only the elements
+// carrying the particles.
 
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -435,6 +437,107 @@ TEST(DetectionInvariance, ARigidMotionMovesTheContactElementsAndKeepsTheGaps) {
       EXPECT_NEAR((f.normal - q * e.normal).norm(), 0.0, 1e-9);
       EXPECT_NEAR(f.gap, e.gap, 1e-12);
     }
+  }
+}
+
+/// Four beams in contact (two crossing at right angles, two parallel in line contact) among `bundle` beams
+/// far from them and from each other, numbered before, between and after the contact beams; `bundle` 0: the
+/// four alone. The contact beams' indices in the model are returned in `contact`.
+Assembly contact_among_bundle(int bundle, std::vector<int>& contact) {
+  Assembly a;
+  contact.clear();
+  const auto add_bundle = [&](int count) {
+    for (int k = 0; k < count; ++k) a.model.add_beam(beam_definition(4.0, 0.1, 8));  // placed below
+  };
+  add_bundle(bundle / 3);
+  for (int k = 0; k < 2; ++k) contact.push_back(a.model.add_beam(beam_definition(4.0, 0.1, 16)));
+  add_bundle(bundle / 3);
+  for (int k = 0; k < 2; ++k) contact.push_back(a.model.add_beam(beam_definition(4.0, 0.1, 12)));
+  add_bundle(bundle - 2 * (bundle / 3));
+  a.x = a.model.reference();
+  int next = 0;
+  for (int b = 0; b < static_cast<int>(a.model.beams().size()); ++b) {
+    if (std::find(contact.begin(), contact.end(), b) != contact.end()) continue;
+    place_beam(a.model, a.x, b,
+               line(Vec3(-2.0, 20.0 + 2.0 * (next % 10), 20.0 + 2.0 * (next / 10)), Vec3::UnitX()),
+               constant(Vec3::UnitY()));
+    ++next;
+  }
+  // Overlaps of 0.01 mm (axis distance 0.19 mm, 2 R = 0.2 mm).
+  place_beam(a.model, a.x, contact[0], line(Vec3(-2.0, 0.0, 0.0), Vec3::UnitX()), constant(Vec3::UnitY()));
+  place_beam(a.model, a.x, contact[1], line(Vec3(0.0, -2.0, 0.19), Vec3::UnitY()), constant(Vec3::UnitX()));
+  place_beam(a.model, a.x, contact[2], line(Vec3(-2.0, 0.0, 5.0), Vec3::UnitX()), constant(Vec3::UnitY()));
+  place_beam(a.model, a.x, contact[3], line(Vec3(-2.0, 0.0, 5.19), Vec3::UnitX()), constant(Vec3::UnitY()));
+  return a;
+}
+
+/// `x` with the nodes of the beams in `beams` moved by a smooth displacement (positions and directors), the
+/// same function of each node's place on its beam in any model.
+Eigen::VectorXd deformed(const model::Model& model, const Eigen::VectorXd& x, const std::vector<int>& beams) {
+  Eigen::VectorXd y = x;
+  for (int k = 0; k < static_cast<int>(beams.size()); ++k) {
+    const beam::Beam& b = model.beam(beams[static_cast<std::size_t>(k)]);
+    for (int i = 0; i < b.num_nodes(); ++i) {
+      const double s = b.abscissa(i) + k;
+      auto node = y.segment<beam::kNodeDofs>(beam::kNodeDofs * b.node(i));
+      node.head<3>() += 0.02 * Vec3(std::sin(s), std::cos(2.0 * s), std::sin(3.0 * s + 1.0));
+      node.segment<3>(3) += 0.05 * Vec3(std::cos(s), 0.3, std::sin(2.0 * s));
+      node.segment<3>(6) += 0.05 * Vec3(0.2, std::sin(s), std::cos(3.0 * s));
+    }
+  }
+  return y;
+}
+
+void expect_identical(const ContactElement& e, const ContactElement& f) {
+  for (int c = 0; c < 3; ++c) {
+    EXPECT_EQ(e.normal[c], f.normal[c]);
+    EXPECT_EQ(e.position_i[c], f.position_i[c]);
+    EXPECT_EQ(e.position_j[c], f.position_j[c]);
+  }
+  EXPECT_EQ(e.gap, f.gap);
+  EXPECT_EQ(e.parallel_weight, f.parallel_weight);
+  EXPECT_EQ(e.particle_i.transverse, f.particle_i.transverse);
+  EXPECT_EQ(e.particle_j.transverse, f.particle_j.transverse);
+}
+
+TEST(UpdateNormal, ReadsOnlyTheElementsOfTheParticlesAndMatchesAFullDetectionExactly) {
+  std::vector<int> in_bundle, alone;
+  const Assembly big = contact_among_bundle(90, in_bundle);
+  const Assembly small = contact_among_bundle(0, alone);
+  ASSERT_EQ(big.model.beams().size(), 94u);
+  ASSERT_GT(big.model.first_element(in_bundle[0]), 0);  // the particles' element numbers differ in the two
+  const ContactGeometry g = detect(big.model, big.x, {}, in_bundle);
+  ASSERT_EQ(g.zones.size(), 2u);
+  ASSERT_GT(g.elements.size(), 10u);
+  const Eigen::VectorXd x_big = deformed(big.model, big.x, in_bundle);
+  const Eigen::VectorXd x_small = deformed(small.model, small.x, alone);
+  // The same contact elements in the model of the four beams alone: particles renumbered.
+  const auto renumbered = [&](Particle p) {
+    const auto k =
+        static_cast<std::size_t>(std::find(in_bundle.begin(), in_bundle.end(), p.beam) - in_bundle.begin());
+    p.element += small.model.first_element(alone[k]) - big.model.first_element(p.beam);
+    p.beam = alone[k];
+    return p;
+  };
+  for (const bool facing : {false, true}) {
+    for (const ContactElement& e : g.elements) {
+      ContactElement in_big = e, in_small = e;
+      in_small.particle_i = renumbered(e.particle_i);
+      in_small.particle_j = renumbered(e.particle_j);
+      ASSERT_TRUE(update_normal(big.model, x_big, in_big, facing));
+      ASSERT_TRUE(update_normal(small.model, x_small, in_small, facing));
+      expect_identical(in_big, in_small);
+      EXPECT_GT((in_big.normal - e.normal).norm(), 1e-3);  // the deformation turned the normal
+    }
+  }
+  // In the state they were detected in, updating the normals of a detection (which builds the geometry of
+  // every contact beam) changes nothing, to the last bit.
+  const ContactGeometry h = detect(big.model, x_big, {}, in_bundle);
+  ASSERT_FALSE(h.elements.empty());
+  for (const ContactElement& e : h.elements) {
+    ContactElement updated = e;
+    ASSERT_TRUE(update_normal(big.model, x_big, updated));
+    expect_identical(updated, e);
   }
 }
 

@@ -76,5 +76,18 @@ TEST(SimulationContact, InconsistentResolvedLengthsAreRefusedInOneLine) {
   }
 }
 
+TEST(SimulationContact, TheFrictionTangentFollowsItsKeyNotTheLinearSolver) {
+  const auto coupling = [](const std::string& sections) {
+    return Simulation(scenario::parse_scenario(pair_scenario(sections), "pair.yaml"))
+        .contact_laws()
+        .friction_normal_coupling;
+  };
+  // umfpack alone used to switch on the tangent with R_N varying; now only the key does.
+  EXPECT_FALSE(coupling("contact: {friction: 0.3}\nsolver: {linear_solver: umfpack}\n"));
+  EXPECT_FALSE(coupling("contact: {friction: 0.3}\n"));
+  EXPECT_TRUE(
+      coupling("contact: {friction: 0.3, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n"));
+}
+
 }  // namespace
 }  // namespace nodus::simulation

@@ -188,10 +188,11 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
                                          "tangential_force",
                                          "slipping",
                                          "stabilization_force",
+                                         "loops_converged",
                                          "l0_fx"};
   ASSERT_GE(steps[0].size(), leading.size());
-  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 17), leading);
-  EXPECT_EQ(steps[0].size(), 16u + 6u * 4u);
+  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 18), leading);
+  EXPECT_EQ(steps[0].size(), 17u + 6u * 4u);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const simulation::StepRecord& r = records[k];
     const auto& f = steps[1 + k];
@@ -200,6 +201,7 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
     EXPECT_GE(r.detections, 1);
     EXPECT_EQ(std::stoi(f[10]), r.normal_iterations);
     EXPECT_EQ(std::stoi(f[14]), r.slipping);
+    EXPECT_EQ(f[16], r.loops_converged ? "1" : "0");
     // The sums and the extremes over the contact states the step ended with.
     double normal = 0.0, tangential = 0.0, penetration = 0.0;
     int slipping = 0;

@@ -24,11 +24,12 @@ namespace {
 TEST(StepsCsv, HeaderNamesContactColumnsThenSixColumnsPerCondition) {
   EXPECT_EQ(steps_csv_header({}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
-            "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force");
+            "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
+            "loops_converged");
   EXPECT_EQ(steps_csv_header({"left", "right"}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
             "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-            "left_fx,left_fy,left_"
+            "loops_converged,left_fx,left_fy,left_"
             "fz,left_mx,left_my,left_mz,right_fx,right_fy,right_fz,right_mx,right_my,"
             "right_mz");
 }
@@ -46,13 +47,14 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   s.force = Eigen::Vector3d(1, -2, 0.125);
   s.moment = Eigen::Vector3d(0, 1234.5, -1e-20);
   r.sections = {s};
-  // Without contact the zone and element counts and the contact-loop figures are 0.
+  // Without contact the zone and element counts and the contact-loop figures are 0, and no loop ended at
+  // its cap (loops_converged 1).
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,1,-2,0.125,0,1234.5,-1e-20");
   r.zones = 3;
   r.contact_elements = 41;
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,1,-2,0.125,0,1234.5,-1e-20");
   r.detections = 2;
   r.normal_iterations = 5;
   r.penetration_ratio = 2.0 / 3.0;
@@ -60,13 +62,14 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   r.tangential_force = 1e-7 / 3.0;
   r.slipping = 17;
   r.stabilization_force = 0.25;
-  EXPECT_EQ(
-      steps_csv_row(r, "bend", 1),
-      "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,2,5,0.6666666667,12.5,3.333333333e-08,17,0.25,1,-2,0.125,0,"
-      "1234.5,-1e-20");
+  r.loops_converged = false;
+  EXPECT_EQ(steps_csv_row(r, "bend", 1),
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,2,5,0.6666666667,12.5,3.333333333e-08,17,0.25,0,1,-2,"
+            "0.125,0,"
+            "1234.5,-1e-20");
   // A missing section gives empty fields; a stage name with a comma is quoted.
   const std::string row = steps_csv_row(r, "a,b", 2);
-  EXPECT_EQ(testing::split(row, ',').size(), 16u + 12u + 1u);  // the quoted comma splits once more
+  EXPECT_EQ(testing::split(row, ',').size(), 17u + 12u + 1u);  // the quoted comma splits once more
   EXPECT_NE(row.find(",\"a,b\","), std::string::npos);
   EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,");
 }
@@ -83,6 +86,7 @@ TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
   r.tangential_force = 0.75;
   r.slipping = 2;
   r.stabilization_force = 0.125;
+  r.loops_converged = false;
   r.sections.resize(2);
   const auto header = testing::split(steps_csv_header({"left", "right"}), ',');
   const auto fields = testing::split(steps_csv_row(r, "s", 2), ',');
@@ -95,12 +99,13 @@ TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
                                                                   {"normal_force", "4.25"},
                                                                   {"tangential_force", "0.75"},
                                                                   {"slipping", "2"},
-                                                                  {"stabilization_force", "0.125"}};
+                                                                  {"stabilization_force", "0.125"},
+                                                                  {"loops_converged", "0"}};
   for (std::size_t k = 0; k < expected.size(); ++k) {
     ASSERT_EQ(header[7 + k], expected[k].first);
     EXPECT_EQ(fields[7 + k], expected[k].second) << expected[k].first;
   }
-  EXPECT_EQ(header[16], "left_fx");
+  EXPECT_EQ(header[17], "left_fx");
 }
 
 TEST(Summary, JsonHoldsEveryField) {

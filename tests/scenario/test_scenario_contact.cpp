@@ -73,7 +73,8 @@ void expect_mechanics_defaults(const ContactSettings& contact) {
   EXPECT_EQ(contact.regularization, 0.0);
   EXPECT_EQ(contact.friction, 0.0);
   EXPECT_EQ(contact.max_reversible_slip, 0.0);
-  EXPECT_FALSE(contact.facing_particles);  // the paper's fixed particles
+  EXPECT_EQ(contact.friction_tangent, FrictionTangent::frozen);  // symmetric, as in the paper
+  EXPECT_FALSE(contact.facing_particles);                        // the paper's fixed particles
   EXPECT_EQ(contact.max_detections, 4);
   EXPECT_EQ(contact.max_normal_iterations, 6);
   EXPECT_EQ(contact.normal_tolerance, 1e-3);
@@ -117,10 +118,12 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   regularization: 0.0005
   friction: 0.3
   max_reversible_slip: 0.002
+  friction_tangent: varying
   particles: facing
   max_detections: 2
   max_normal_iterations: 10
   normal_tolerance: 1e-4
+solver: {linear_solver: umfpack}
 )")
                                       .contact;
   EXPECT_TRUE(contact.enabled);
@@ -137,6 +140,7 @@ TEST(ScenarioContact, EveryKeyIsRead) {
   EXPECT_DOUBLE_EQ(contact.regularization, 0.0005);
   EXPECT_DOUBLE_EQ(contact.friction, 0.3);
   EXPECT_DOUBLE_EQ(contact.max_reversible_slip, 0.002);
+  EXPECT_EQ(contact.friction_tangent, FrictionTangent::varying);
   EXPECT_TRUE(contact.facing_particles);
   EXPECT_EQ(contact.max_detections, 2);
   EXPECT_EQ(contact.max_normal_iterations, 10);
@@ -232,6 +236,39 @@ TEST(ScenarioContact, ConsistencyRulesAcceptTheLimitsAndAutoValues) {
 }
 
 // ---- errors ----
+
+TEST(ScenarioContact, FrictionTangentIsItsOwnKey) {
+  // The default is frozen whatever the linear solver: choosing umfpack no longer changes the tangent.
+  EXPECT_EQ(parse("contact: {friction: 0.3}\n").contact.friction_tangent, FrictionTangent::frozen);
+  const Scenario lu = parse("contact: {friction: 0.3}\nsolver: {linear_solver: umfpack}\n");
+  EXPECT_EQ(lu.solver.linear_solver, LinearSolverKind::umfpack);
+  EXPECT_EQ(lu.contact.friction_tangent, FrictionTangent::frozen);
+  EXPECT_EQ(parse("contact: {friction_tangent: frozen}\nsolver: {linear_solver: umfpack}\n")
+                .contact.friction_tangent,
+            FrictionTangent::frozen);
+  EXPECT_EQ(parse("contact: {friction_tangent: frozen}\n").contact.friction_tangent, FrictionTangent::frozen);
+  EXPECT_EQ(parse("contact: {friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n")
+                .contact.friction_tangent,
+            FrictionTangent::varying);
+  // Without friction the key is accepted and changes nothing.
+  EXPECT_EQ(parse("contact:\n  friction: 0\n  friction_tangent: varying\nsolver: {linear_solver: umfpack}\n")
+                .contact.friction_tangent,
+            FrictionTangent::varying);
+}
+
+TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
+  const std::string expected =
+      "contact.friction_tangent: expected frozen with solver.linear_solver: cholmod (the varying tangent is "
+      "not "
+      "symmetric and needs LU: set solver.linear_solver: umfpack), got varying";
+  // CHOLMOD by default, and by name; the line is that of friction_tangent.
+  EXPECT_EQ(error_of("contact:\n  friction: 0.3\n  friction_tangent: varying\n"),
+            "knot.yaml:27: " + expected);
+  EXPECT_EQ(error_of("contact: {friction_tangent: varying}\nsolver: {linear_solver: cholmod}\n"),
+            "knot.yaml:25: " + expected);
+  EXPECT_EQ(error_of("contact:\n  friction_tangent: exact\n"),
+            "knot.yaml:26: contact.friction_tangent: expected one of frozen | varying, got exact");
+}
 
 TEST(ScenarioContactErrors, UnknownBeam) {
   EXPECT_EQ(error_of("contact:\n  beams: [rod, rdo]\n"),
@@ -370,7 +407,7 @@ TEST(ScenarioContactErrors, UnknownKey) {
   const std::string keys =
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
       "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
-      "regularization | friction | max_reversible_slip | particles | max_detections | "
+      "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
       "max_normal_iterations | normal_tolerance";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
@@ -442,6 +479,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  regularization: auto  # mm\n"
                        "  friction: 0\n"
                        "  max_reversible_slip: auto  # mm\n"
+                       "  friction_tangent: frozen\n"
                        "  particles: fixed\n"
                        "  max_detections: 4\n"
                        "  max_normal_iterations: 6\n"
@@ -460,6 +498,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  regularization: 0.0005  # mm\n"
                        "  friction: 0.3\n"
                        "  max_reversible_slip: 0.002  # mm\n"
+                       "  friction_tangent: frozen\n"
                        "  particles: facing\n"
                        "  max_detections: 2\n"
                        "  max_normal_iterations: 10\n"
@@ -481,7 +520,8 @@ TEST(ScenarioContactDescribe, RoundTrips) {
         "contact:\n  forces: false\n  penalty: 123.456\n  max_penetration: 0.0021\n  regularization: auto\n"
         "  friction: 0.3\n  max_reversible_slip: 1e-3\n  particles: facing\n  max_detections: 7\n"
         "  max_normal_iterations: 1\n  normal_tolerance: 2.5e-4\n",
-        "contact: {enabled: false, friction: 0.1, penalty: 1e5, max_penetration: auto}\n"}) {
+        "contact: {enabled: false, friction: 0.1, penalty: 1e5, max_penetration: auto}\n",
+        "contact: {friction: 0.2, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n"}) {
     const Scenario original = parse(section);
     Scenario again;
     ASSERT_NO_THROW(again = parse_scenario(describe(original), "described.yaml")) << describe(original);
@@ -503,6 +543,7 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.regularization, b.regularization) << section;
     EXPECT_EQ(a.friction, b.friction) << section;
     EXPECT_EQ(a.max_reversible_slip, b.max_reversible_slip) << section;
+    EXPECT_EQ(a.friction_tangent, b.friction_tangent) << section;
     EXPECT_EQ(a.facing_particles, b.facing_particles) << section;
     EXPECT_EQ(a.max_detections, b.max_detections) << section;
     EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;

@@ -1,4 +1,5 @@
-// Tests of the key table: consistent, in sync with the struct defaults and with docs/scenario.md.
+// Tests of the key table: consistent, in sync with the struct defaults and with docs/scenario.md; and the
+// defaults of the scenario structs equal those of the library structs that the run fills from them.
 
 #include <cstdlib>
 #include <fstream>
@@ -8,8 +9,14 @@
 
 #include <gtest/gtest.h>
 
+#include "nodus/contact/detection.hpp"
+#include "nodus/model/model.hpp"
 #include "nodus/scenario/keys.hpp"
 #include "nodus/scenario/scenario.hpp"
+#include "nodus/simulation/contact_loops.hpp"
+#include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/solver/load_stepping.hpp"
+#include "nodus/solver/newton.hpp"
 
 namespace nodus::scenario {
 namespace {
@@ -152,11 +159,50 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
             contact.max_normal_iterations);
   EXPECT_EQ(number(scenario_key("contact.normal_tolerance").default_value), contact.normal_tolerance);
   EXPECT_EQ(scenario_key("contact.normal_tolerance").unit, "rad");
+  EXPECT_EQ(scenario_key("contact.friction_tangent").default_value, "frozen");
+  EXPECT_EQ(contact.friction_tangent, FrictionTangent::frozen);
 
   const StageSpec stage;
   EXPECT_EQ(number(scenario_key("stages[].duration").default_value), stage.duration);
   EXPECT_EQ(scenario_key("conditions[].active").default_value,
             ConditionSpec{}.initially_active ? "true" : "false");
+}
+
+// A library user who leaves a setting at its default gets what a scenario file that leaves out the key gets:
+// each pair of defaults, scenario struct and library struct, is equal.
+TEST(ScenarioKeys, LibraryDefaultsEqualTheScenarioDefaults) {
+  const SolverSettings solver;
+  const nodus::solver::NewtonSettings newton;
+  EXPECT_EQ(newton.max_iterations, solver.max_newton_iterations);
+  EXPECT_EQ(newton.line_search, solver.line_search);
+  EXPECT_FALSE(newton.line_search);  // the scenario default (docs/model.md)
+  const nodus::solver::StepControl stepping;
+  EXPECT_EQ(stepping.max_cutbacks, solver.max_cutbacks);
+  EXPECT_EQ(stepping.easy_iterations, solver.easy_iterations);
+  const simulation::Tolerances tolerances;
+  EXPECT_EQ(tolerances.residual, solver.residual_tolerance);
+  EXPECT_EQ(tolerances.increment, solver.increment_tolerance);
+  const model::Model model;
+  EXPECT_EQ(model.gauss_points(), solver.gauss_points);
+  EXPECT_EQ(model.fold_stiffness(), solver.fold_stiffness);
+
+  const ContactSettings contact;
+  const contact::DetectionParameters detection;
+  EXPECT_EQ(detection.self_contact, contact.self_contact);
+  // Lengths <= 0: auto in both.
+  EXPECT_EQ(detection.proximity_distance, contact.proximity_distance);
+  EXPECT_EQ(detection.separation_distance, contact.separation_distance);
+  EXPECT_EQ(detection.test_point_spacing, contact.test_point_spacing);
+  EXPECT_EQ(detection.matching_length, contact.matching_length);
+  EXPECT_EQ(detection.element_spacing, contact.element_spacing);
+  const simulation::ContactLawSettings laws;
+  EXPECT_EQ(laws.max_detections, contact.max_detections);
+  EXPECT_EQ(laws.max_normal_iterations, contact.max_normal_iterations);
+  EXPECT_EQ(laws.normal_tolerance, contact.normal_tolerance);
+  EXPECT_EQ(laws.facing_particles, contact.facing_particles);
+  EXPECT_EQ(laws.friction_normal_coupling, contact.friction_tangent == FrictionTangent::varying);
+  EXPECT_FALSE(laws.friction.has_value());  // no friction, as contact.friction = 0
+  EXPECT_EQ(contact.friction, 0.0);
 }
 
 TEST(ScenarioKeys, MarkdownHasOneRowPerKey) {

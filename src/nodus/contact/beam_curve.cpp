@@ -62,15 +62,6 @@ int cubic_roots(const std::array<double, 4>& c, double lo, double hi, std::array
 
 }  // namespace
 
-BeamCurves::BeamCurves(const model::Model& model, const Eigen::VectorXd& x) : model_(model), x_(x) {
-  int first = 0;
-  for (int b = 0; b < static_cast<int>(model.beams().size()); ++b) {
-    first_element_.push_back(first);
-    first += model.beam(b).num_elements();
-    element_beam_.insert(element_beam_.end(), static_cast<std::size_t>(model.beam(b).num_elements()), b);
-  }
-}
-
 double BeamCurves::abscissa(int element, double local) const {
   const int beam = element_beam(element);
   const double h = model_.beam(beam).element_length();

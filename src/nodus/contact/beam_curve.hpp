@@ -26,18 +26,21 @@ struct ClosestPoint {
   double distance = 0.0;  ///< its distance to the point [mm]
 };
 
-/// A view of the beams' current geometry in state `x`; keeps references to `model` and `x`.
+/// A view of the beams' current geometry in state `x`; keeps references to `model` and `x`. Building one
+/// costs nothing (no table over the beams): a section's geometry is read from the three nodes of its element
+/// when asked for, so evaluating it at a few particles costs as many element evaluations, however large the
+/// model.
 class BeamCurves {
  public:
-  BeamCurves(const model::Model& model, const Eigen::VectorXd& x);
+  BeamCurves(const model::Model& model, const Eigen::VectorXd& x) : model_(model), x_(x) {}
 
   const model::Model& model() const { return model_; }
   double length(int beam) const { return model_.beam(beam).length(); }
   double radius(int beam) const { return model_.beam(beam).radius(); }
   /// Global index of the first element of `beam`.
-  int first_element(int beam) const { return first_element_[static_cast<std::size_t>(beam)]; }
+  int first_element(int beam) const { return model_.first_element(beam); }
   /// Beam of global element `element`.
-  int element_beam(int element) const { return element_beam_[static_cast<std::size_t>(element)]; }
+  int element_beam(int element) const { return model_.element_beam(element); }
   /// Reference arc length of element coordinate `local` of global element `element` [mm].
   double abscissa(int element, double local) const;
 
@@ -57,8 +60,6 @@ class BeamCurves {
  private:
   const model::Model& model_;
   const Eigen::VectorXd& x_;
-  std::vector<int> first_element_;
-  std::vector<int> element_beam_;
 };
 
 }  // namespace nodus::contact

@@ -15,6 +15,7 @@ int Model::add_beam(const beam::BeamDefinition& definition) {
   properties_.push_back(b.element_properties(gauss_points_));
   properties_.back().fold_stiffness = fold_stiffness_;
   const int index = static_cast<int>(beams_.size()) - 1;
+  first_element_.push_back(num_elements());
   for (int e = 0; e < b.num_elements(); ++e) elements_.push_back({index, b.node(2 * e)});
   for (int i = 0; i < b.num_nodes(); ++i) dofs_.add_block(kBeamNodeKinds);
   reference_.conservativeResize(dofs_.num_dofs());

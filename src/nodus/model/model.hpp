@@ -44,7 +44,12 @@ class Model {
   /// The first unknown of beam node `node`.
   int node_dof(int node) const { return dofs_.first(node); }
   int num_elements() const { return static_cast<int>(elements_.size()); }
+  /// Global index of the first element of beam `b` (elements are numbered beam after beam).
+  int first_element(int b) const { return first_element_[static_cast<std::size_t>(b)]; }
+  /// The beam of global element `element`.
+  int element_beam(int element) const { return elements_[static_cast<std::size_t>(element)].beam; }
   int gauss_points() const { return gauss_points_; }
+  double fold_stiffness() const { return fold_stiffness_; }
 
   /// Reference configuration (every unknown: nine values per node, then the other blocks).
   const Eigen::VectorXd& reference() const { return reference_; }
@@ -82,6 +87,7 @@ class Model {
   std::vector<beam::Beam> beams_;
   std::vector<beam::ElementProperties> properties_;  ///< one per beam
   std::vector<Element> elements_;
+  std::vector<int> first_element_;  ///< per beam: global index of its first element
   Eigen::VectorXd reference_;
   DofMap dofs_;
   int num_nodes_ = 0;

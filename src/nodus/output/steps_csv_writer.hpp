@@ -15,7 +15,7 @@ namespace nodus::output {
 
 /// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment,zones,
 /// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
-/// stabilization_force,
+/// stabilization_force,loops_converged,
 /// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
 std::string steps_csv_header(const std::vector<std::string>& condition_names);
 
@@ -23,7 +23,8 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names);
 /// significant digits: time [s], residual [N], increment [-], penetration_ratio [-], forces [N], moments
 /// [N mm]; `zones` and `contact_elements` are the record's counts (0 without contact); `detections`,
 /// `normal_iterations`, `penetration_ratio`, `normal_force` (sum of R_N), `tangential_force` (sum of |R_T|)
-/// and `slipping` are the record's contact-loop figures (0 without contact forces). Sections missing from the
+/// and `slipping` are the record's contact-loop figures (0 without contact forces); `loops_converged` is 1 or
+/// 0 (1 without contact forces). Sections missing from the
 /// record (fewer than `num_conditions`) give empty fields.
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions);

@@ -182,6 +182,10 @@ constexpr std::array kKeys{
   KeyDoc{"contact.max_reversible_slip", "number", "mm", "auto", "> 0 or auto",
          "g_rev_max, the tangential displacement taken reversibly before sliding (regularised Coulomb law). "
          "auto: max_penetration / 2"},
+  KeyDoc{"contact.friction_tangent", "choice", "", "frozen", "frozen | varying",
+         "how Newton's tangent linearises the friction force (the force is the same). frozen: R_N held fixed, "
+         "a symmetric tangent. varying: the exact derivative with R_N varying, not symmetric: needs "
+         "solver.linear_solver: umfpack (docs/contact.md)"},
   KeyDoc{"contact.particles", "choice", "", "fixed", "fixed | facing",
          "where the contact forces act during Newton. fixed: the paper's particles, material points of the "
          "section borders placed at detection (Eq. 37-40). facing: at each evaluation, the points of the "
@@ -193,8 +197,9 @@ constexpr std::array kKeys{
   KeyDoc{"contact.max_normal_iterations", "integer", "", "6", ">= 1",
          "loop 3: at most this many updates of the normal directions and penalties per detection"},
   KeyDoc{"contact.normal_tolerance", "number", "rad", "0.001", "> 0",
-         "loop 3 stops when no normal turns by more than this and every zone's penetration is within 20 % "
-         "of max_penetration (or none)"},
+         "loop 3 stops when an update turns no normal by more than this and leaves every zone's penalty as "
+         "it is: its largest penetration in [max_penetration / 2, max_penetration], or below "
+         "max_penetration / 1000 (a zone that only touches)"},
 
   KeyDoc{"branches", "list", "", "[]", "-",
          "runs that each continue from the state at the end of one stage of stages, after all of stages; "

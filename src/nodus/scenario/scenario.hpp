@@ -12,6 +12,9 @@
 
 #include <Eigen/Core>
 
+#include "nodus/solver/load_stepping.hpp"
+#include "nodus/solver/newton.hpp"
+
 namespace nodus::scenario {
 
 using Vec3 = Eigen::Vector3d;
@@ -108,16 +111,22 @@ struct StageSpec {
 
 enum class LinearSolverKind { cholmod, umfpack };
 
+/// The `solver` section. The Newton and stepping defaults are the library's (solver::NewtonSettings,
+/// solver::StepControl); the others equal those of the library structs that take them, which a test checks
+/// (tests/scenario/test_scenario_keys.cpp).
 struct SolverSettings {
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
-  int max_newton_iterations = 25;     ///< per step attempt, >= 1
+  int max_newton_iterations = ::nodus::solver::NewtonSettings{}.max_iterations;  ///< per step attempt, >= 1
   double residual_tolerance = 1e-8;   ///< |R| <= tol * force scale [-], > 0
   double increment_tolerance = 1e-6;  ///< |du|_inf <= tol * length scale [-], > 0
-  int max_cutbacks = 12;              ///< successive halvings of a step before giving up, >= 0
-  int easy_iterations = 4;            ///< a step converged in at most this many iterations lets the next grow
-  bool line_search = false;           ///< slower on every verification case so far (docs/model.md)
-  int gauss_points = 2;               ///< Gauss points per element along the axis, 1..5
-  double fold_stiffness = 0.0;        ///< beta of the fold stabilisation (beam_element.hpp), >= 0
+  /// Successive halvings of a step before giving up, >= 0.
+  int max_cutbacks = ::nodus::solver::StepControl{}.max_cutbacks;
+  /// A step converged in at most this many iterations lets the next grow, >= 1.
+  int easy_iterations = ::nodus::solver::StepControl{}.easy_iterations;
+  /// Damp the Newton updates by a line search: slower on every verification case so far (docs/model.md).
+  bool line_search = ::nodus::solver::NewtonSettings{}.line_search;
+  int gauss_points = 2;         ///< Gauss points per element along the axis, 1..5
+  double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (beam_element.hpp), >= 0
 };
 
 struct OutputSettings {
@@ -126,6 +135,13 @@ struct OutputSettings {
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
   bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
+};
+
+/// How Newton's tangent linearises the friction force (contact.friction_tangent; docs/contact.md). The force
+/// itself is the same either way.
+enum class FrictionTangent {
+  frozen,   ///< R_N held fixed, as in Durville 2012, Sect. 5.3: symmetric, any linear solver
+  varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack)
 };
 
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
@@ -146,6 +162,7 @@ struct ContactSettings {
   double regularization = 0.0;       ///< p_reg [mm], auto if <= 0
   double friction = 0.0;             ///< mu [-], >= 0
   double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
+  FrictionTangent friction_tangent = FrictionTangent::frozen;
   /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
   /// paper's fixed material particles (fixed).
   bool facing_particles = false;

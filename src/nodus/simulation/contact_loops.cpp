@@ -188,20 +188,34 @@ solver::NewtonReport ContactLoops::solve() {
         total.failure = r.failure;
         return total;
       }
-      if (m >= laws_.max_normal_iterations) break;  // keep the normals and penalties Newton converged with
       const contact::ContactGeometry kept = problem_.contact_geometry();
       const std::vector<double> kept_penalty = problem_.zone_penalty();
       const double turn = update_normals();
       const bool off = adjust_penalties();
-      if (turn <= laws_.normal_tolerance && !off) {
-        problem_.contact_geometry() = kept;  // converged: the state is the equilibrium of these
+      const bool converged = turn <= laws_.normal_tolerance && !off;
+      if (converged || m >= laws_.max_normal_iterations) {
+        // Converged: the state is the equilibrium of these normals and penalties. At the cap: keep those
+        // Newton converged with too, and say whether the update would still have changed them.
+        problem_.contact_geometry() = kept;
         problem_.zone_penalty() = kept_penalty;
+        stats_.normals_capped = !converged;
+        if (!converged)
+          spdlog::debug(
+              "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
+              "up to {:.2e} rad{}",
+              laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
         break;
       }
       spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
                     off ? ", penalties adjusted" : "");
     }
-    if (settled || stats_.detections >= laws_.max_detections) break;
+    if (settled) break;
+    if (stats_.detections >= laws_.max_detections) {
+      // At the cap before the set of contact elements settled: unless no beam takes part in contact, where
+      // every detection finds nothing.
+      stats_.detections_capped = !beams_.empty();
+      break;
+    }
     // Loop 2: a new detection in the converged state. The set of contact elements has converged when the
     // new set changes the contact forces by little: the state is in equilibrium with it to the residual
     // tolerance (Newton would stop at once: done), or to kSetTolerance of the total normal force (one more

@@ -24,7 +24,8 @@ struct ContactLawSettings {
   double max_penetration = 0.0;  ///< p_max [mm]
   double regularization = 0.0;   ///< p_reg [mm]
   std::optional<contact::FrictionLaw> friction;
-  /// Linearise friction with R_N varying (a non-symmetric tangent): set when the linear solver is LU.
+  /// Linearise friction with R_N varying (a non-symmetric tangent, needs an LU solver;
+  /// contact.friction_tangent: varying); false: R_N held fixed in the friction tangent (symmetric).
   bool friction_normal_coupling = false;
   /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
   bool facing_particles = false;
@@ -35,12 +36,20 @@ struct ContactLawSettings {
 
 /// What the loops did in the last step, and the contact forces at its end.
 struct ContactStepStats {
-  int detections = 0;              ///< loop 2 iterations
-  int normal_iterations = 0;       ///< loop 3 iterations, summed over the detections
+  int detections = 0;         ///< loop 2 iterations
+  int normal_iterations = 0;  ///< loop 3 iterations, summed over the detections
+  /// Loop 2 stopped at max_detections without its criterion (the set of contact elements settled) met.
+  bool detections_capped = false;
+  /// The last loop 3 of the step stopped at max_normal_iterations with normals that a further update would
+  /// still turn by more than normal_tolerance, or penalties that it would still adjust.
+  bool normals_capped = false;
   double penetration_ratio = 0.0;  ///< largest penetration / p_max over all zones
   double normal_force = 0.0;       ///< sum of R_N over the contact elements [N]
   double tangential_force = 0.0;   ///< sum of |R_T| [N]
   int slipping = 0;                ///< contact elements sliding
+
+  /// Both loops ended by their criteria, not at their caps.
+  bool loops_converged() const { return !detections_capped && !normals_capped; }
 };
 
 class ContactLoops {
@@ -61,7 +70,8 @@ class ContactLoops {
   contact::ContactGeometry detect();
   /// Makes `next` the contact elements, with penalties and history carried over from the current ones.
   void install(contact::ContactGeometry next);
-  /// Updates the normals in the current state; returns the largest turn [rad].
+  /// Updates the normals in the current state; returns the largest turn [rad]. Costs O(contact elements):
+  /// each update reads only the two beam elements that carry its particles.
   double update_normals();
   /// Adjusts the penalty of each zone whose largest penetration is outside [p_max / 2, p_max] so that it
   /// approaches 3/4 p_max (Eq. 54); returns true if it adjusted one.

@@ -140,8 +140,8 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   if (c.friction > 0.0)
     laws.friction = contact::FrictionLaw{
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
-  // The friction tangent with R_N varying is not symmetric: CHOLMOD reads only the upper triangle.
-  laws.friction_normal_coupling = s.solver.linear_solver == scenario::LinearSolverKind::umfpack;
+  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack) only.
+  laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
   laws.max_normal_iterations = c.max_normal_iterations;
@@ -327,6 +327,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     const double t1 = progress_.stage_start_time + stage.duration;
     problem_->set_stabilization(
         {progress_.stage_start_time, t1, stage.stabilization, stage.stabilization_end});
+    bool warned_capped = false;  // a step of this stage ended a contact loop at its cap (warned once)
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
     const solver::AdvanceResult result = solver::advance(
@@ -353,6 +354,26 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             record.normal_force = c.normal_force;
             record.tangential_force = c.tangential_force;
             record.slipping = c.slipping;
+            record.loops_converged = c.loops_converged();
+            if (!record.loops_converged && !warned_capped) {
+              warned_capped = true;
+              const std::string loop2 = fmt::format(
+                  "loop 2 (detections) stopped at contact.max_detections = {} before meeting its criterion",
+                  laws_.max_detections);
+              const std::string loop3 = fmt::format(
+                  "loop 3 (normal directions) stopped at contact.max_normal_iterations = {} before meeting "
+                  "its "
+                  "criterion",
+                  laws_.max_normal_iterations);
+              const std::string capped = c.detections_capped && c.normals_capped ? loop2 + ", and " + loop3
+                                         : c.detections_capped                   ? loop2
+                                                                                 : loop3;
+              spdlog::warn(
+                  "stage '{}', step {}: contact {} (steps.csv: loops_converged = 0; not repeated for later "
+                  "steps "
+                  "of this stage)",
+                  stage.name, record.step, capped);
+            }
           } else {
             detect_contact();
           }

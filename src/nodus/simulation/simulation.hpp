@@ -39,8 +39,11 @@ struct StepRecord {
   double normal_force = 0.0;                    ///< sum of the normal reactions [N]
   double tangential_force = 0.0;                ///< sum of the friction force magnitudes [N]
   int slipping = 0;                             ///< contact elements sliding (friction at mu R_N)
-  double stabilization_force = 0.0;             ///< |viscous stabilisation drag| over all nodes [N] (0: none)
-  bool ends_stage = false;                      ///< the step reached the end of its stage
+  /// Contact loops 2 and 3 both ended by their criteria, not at their caps (contact.max_detections,
+  /// contact.max_normal_iterations); true without contact forces (no loops).
+  bool loops_converged = true;
+  double stabilization_force = 0.0;  ///< |viscous stabilisation drag| over all nodes [N] (0: none)
+  bool ends_stage = false;           ///< the step reached the end of its stage
 };
 
 struct RunSummary {

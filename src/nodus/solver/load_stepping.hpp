@@ -23,6 +23,7 @@ class SteppedProblem : public NonlinearProblem {
   virtual void restore() = 0;
 };
 
+/// The defaults are those of a scenario file (scenario::SolverSettings takes them from here).
 struct StepControl {
   double nominal_step = 1.0;  ///< the user's step in load time; steps never grow beyond it
   int max_cutbacks = 12;      ///< successive halvings of a failing step before giving up

@@ -1,5 +1,5 @@
 #pragma once
-/// Newton-Raphson with a line search on the slope of the energy along the Newton direction.
+/// Newton-Raphson, optionally with a line search on the slope of the energy along the Newton direction.
 
 #include <string>
 
@@ -8,9 +8,10 @@
 
 namespace nodus::solver {
 
+/// The defaults are those of a scenario file (scenario::SolverSettings takes them from here).
 struct NewtonSettings {
-  int max_iterations = 25;
-  bool line_search = true;
+  int max_iterations = 25;   ///< iterations per solve
+  bool line_search = false;  ///< slower on every verification case so far (docs/model.md)
   int max_line_search_iterations = 6;
   /// The step is accepted once |du . R(u + alpha du)| <= slope_ratio |du . R(u)|.
   double slope_ratio = 0.5;

@@ -1,0 +1,153 @@
+// The contact loops of a load step (simulation/contact_loops.hpp) say when they stopped at their caps rather
+// than by their criteria: StepRecord::loops_converged (steps.csv: loops_converged) and one warning per stage,
+// naming the stage, the first such step and the loop.
+//
+// The scenario: a tool beam presses a beam lying on two supports and drags it sideways with friction, then is
+// taken out of contact (examples/tool_drag.yaml). Its contact normals turn from one step to the next
+// (the beam bends under the tool), so one Newton solve per detection (max_normal_iterations: 1) leaves them
+// unconverged, and one detection per step (max_detections: 1) never checks the set of contact elements.
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+#include <spdlog/sinks/ringbuffer_sink.h>
+#include <spdlog/spdlog.h>
+
+#include "nodus/scenario/scenario.hpp"
+#include "nodus/simulation/simulation.hpp"
+
+namespace nodus::simulation {
+namespace {
+
+std::string drag_scenario(const std::string& loop_settings) {
+  return R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: beam, material: nylon, radius: 0.1, length: 10, elements: 60, start: [-5, 0, 0]}
+  - {name: tool, material: nylon, radius: 0.2, length: 2, elements: 4, start: [0, -1, 0.31],
+     direction: [0, 1, 0], director1: [1, 0, 0]}
+conditions:
+  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
+  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
+  - {name: press, type: rigid, beam: tool}
+stages:
+  - name: press
+    steps: 5
+    motions:
+      press: {translation: [0, 0, -0.1]}
+  - name: drag
+    steps: 10
+    motions:
+      press: {translation: [0, 0.3, -0.1]}
+  - name: lift
+    steps: 1
+    contact_off: [tool]
+contact:
+  self_contact: false
+  friction: 0.3
+)" + loop_settings;
+}
+
+struct LoopsRun {
+  std::vector<StepRecord> records;
+  std::vector<std::string> warnings;
+  std::vector<std::string> stages;
+};
+
+class Recorder : public StepObserver {
+ public:
+  std::vector<StepRecord> records;
+  void on_step(const Simulation&, const StepRecord& r) override { records.push_back(r); }
+};
+
+/// Runs the scenario with the library's warnings captured.
+LoopsRun run(const std::string& loop_settings) {
+  auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(1000);
+  sink->set_pattern("%v");
+  const std::shared_ptr<spdlog::logger> previous = spdlog::default_logger();
+  auto logger = std::make_shared<spdlog::logger>("test", sink);
+  logger->set_level(spdlog::level::warn);
+  spdlog::set_default_logger(logger);
+  LoopsRun r;
+  {
+    Simulation sim(scenario::parse_scenario(drag_scenario(loop_settings), "drag.yaml"));
+    for (const scenario::StageSpec& s : sim.scenario().stages) r.stages.push_back(s.name);
+    Recorder recorder;
+    const RunSummary summary = sim.run({&recorder});
+    EXPECT_TRUE(summary.converged) << summary.failure;
+    r.records = recorder.records;
+  }
+  spdlog::set_default_logger(previous);
+  r.warnings = sink->last_formatted();
+  return r;
+}
+
+/// The first step of each stage whose loops did not converge, and the warnings expected for them.
+std::vector<std::string> expected_warnings(const LoopsRun& r, const std::string& loop) {
+  std::vector<std::string> expected;
+  std::vector<bool> seen(r.stages.size(), false);
+  for (const StepRecord& s : r.records) {
+    if (s.loops_converged || seen[static_cast<std::size_t>(s.stage)]) continue;
+    seen[static_cast<std::size_t>(s.stage)] = true;
+    expected.push_back("stage '" + r.stages[static_cast<std::size_t>(s.stage)] + "', step " +
+                       std::to_string(s.step) + ": contact " + loop + " before meeting its criterion");
+  }
+  return expected;
+}
+
+void expect_warnings(const LoopsRun& r, const std::vector<std::string>& expected) {
+  ASSERT_EQ(r.warnings.size(), expected.size());
+  for (std::size_t k = 0; k < expected.size(); ++k)
+    EXPECT_EQ(r.warnings[k].rfind(expected[k], 0), 0u) << r.warnings[k] << "\nexpected: " << expected[k];
+}
+
+TEST(ContactLoops, StepsOfLoopsConvergedByTheirCriteriaAreNotFlagged) {
+  const LoopsRun r = run("");  // the defaults: 4 detections, 6 normal updates
+  ASSERT_EQ(r.records.size(), 16u);
+  for (const StepRecord& s : r.records) {
+    EXPECT_TRUE(s.loops_converged) << "step " << s.step;
+    EXPECT_LT(s.detections, 4) << "step " << s.step;  // loop 2 settled before its cap
+  }
+  EXPECT_TRUE(r.warnings.empty()) << r.warnings.front();
+}
+
+TEST(ContactLoops, LoopThreeAtItsCapIsFlaggedAndWarnedOncePerStage) {
+  const LoopsRun r = run("  max_normal_iterations: 1\n");
+  ASSERT_GE(r.records.size(), 16u);
+  int flagged = 0, with_tool = 0;
+  for (const StepRecord& s : r.records) {
+    // At most one Newton solve per detection: loop 3 never updated the normals it converged with.
+    EXPECT_LE(s.normal_iterations, s.detections) << "step " << s.step;
+    if (s.stage < 2) ++with_tool;
+    if (!s.loops_converged) ++flagged;
+    // Without the tool (stage lift) no contact element is left: nothing to turn, loop 3 converged at once.
+    if (s.stage == 2) {
+      EXPECT_TRUE(s.loops_converged) << "step " << s.step;
+    }
+  }
+  // The beam bends under the tool in every step of press and drag, turning the normals.
+  EXPECT_EQ(flagged, with_tool);
+  const std::vector<std::string> expected =
+      expected_warnings(r, "loop 3 (normal directions) stopped at contact.max_normal_iterations = 1");
+  ASSERT_EQ(expected.size(), 2u);  // press and drag, not lift
+  expect_warnings(r, expected);
+}
+
+TEST(ContactLoops, LoopTwoAtItsCapIsFlaggedAndWarnedOncePerStage) {
+  const LoopsRun r = run("  max_detections: 1\n");
+  ASSERT_GE(r.records.size(), 16u);
+  for (const StepRecord& s : r.records) {
+    EXPECT_EQ(s.detections, 1);
+    // One detection never checks that a new one would find the same contact elements.
+    EXPECT_FALSE(s.loops_converged) << "step " << s.step;
+  }
+  const std::vector<std::string> expected =
+      expected_warnings(r, "loop 2 (detections) stopped at contact.max_detections = 1");
+  ASSERT_EQ(expected.size(), 3u);
+  expect_warnings(r, expected);
+}
+
+}  // namespace
+}  // namespace nodus::simulation
