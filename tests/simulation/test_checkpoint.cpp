@@ -11,7 +11,7 @@
 
 #include <gtest/gtest.h>
 
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -93,7 +93,7 @@ void expect_same(const StepRecord& a, const StepRecord& b) {
 
 std::string error_of(const std::string& bytes, const scenario::Scenario& s) {
   try {
-    nodus::output::decode_checkpoint(bytes, s, "test.nodus-state");
+    nodus::persistence::decode_checkpoint(bytes, s, "test.nodus-state");
   } catch (const scenario::ScenarioError& e) {
     return e.what();
   }
@@ -119,10 +119,10 @@ TEST(Checkpoint, ResumedRunEqualsUninterrupted) {
     EXPECT_FALSE(stopped.converged);
     EXPECT_EQ(before.finished, 0);  // as if killed
     EXPECT_EQ(stopped.new_steps, k);
-    const std::string bytes = nodus::output::encode_checkpoint(s, first.snapshot());
+    const std::string bytes = nodus::persistence::encode_checkpoint(s, first.snapshot());
 
     Simulation second(s);
-    second.restore(nodus::output::decode_checkpoint(bytes, s, "memory"), StartKind::resumed);
+    second.restore(nodus::persistence::decode_checkpoint(bytes, s, "memory"), StartKind::resumed);
     EXPECT_EQ(second.steps(), k);
     Recorder after;
     const RunSummary rest = second.run({&after});
@@ -146,7 +146,7 @@ TEST(Checkpoint, ResumedRunEqualsUninterrupted) {
     // The final states save to the same bytes (the counters of wall time aside: compare without them).
     SimulationState x = second.snapshot(), y = reference.snapshot();
     x.counters = y.counters = {};
-    EXPECT_EQ(nodus::output::encode_checkpoint(s, x), nodus::output::encode_checkpoint(s, y));
+    EXPECT_EQ(nodus::persistence::encode_checkpoint(s, x), nodus::persistence::encode_checkpoint(s, y));
   }
 }
 
@@ -154,16 +154,16 @@ TEST(Checkpoint, EncodingRoundTrips) {
   const scenario::Scenario s = scenario::parse_scenario(kScenario, "resume.yaml");
   Simulation sim(s);
   sim.run({}, {4});
-  const std::string bytes = nodus::output::encode_checkpoint(s, sim.snapshot());
+  const std::string bytes = nodus::persistence::encode_checkpoint(s, sim.snapshot());
   EXPECT_EQ(bytes.substr(0, 12), "NODUS-STATE\n");
-  EXPECT_EQ(nodus::output::encode_checkpoint(s, nodus::output::decode_checkpoint(bytes, s, "memory")), bytes);
+  EXPECT_EQ(nodus::persistence::encode_checkpoint(s, nodus::persistence::decode_checkpoint(bytes, s, "memory")), bytes);
 }
 
 TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {
   const scenario::Scenario s = scenario::parse_scenario(kScenario, "resume.yaml");
   Simulation sim(s);
   sim.run({}, {4});
-  const std::string bytes = nodus::output::encode_checkpoint(s, sim.snapshot());
+  const std::string bytes = nodus::persistence::encode_checkpoint(s, sim.snapshot());
 
   std::string flipped = bytes;
   flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
@@ -210,12 +210,12 @@ TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {
   scenario::Scenario longer = s;
   longer.stages.push_back(longer.stages.back());
   longer.stages.back().name = "again";
-  EXPECT_NO_THROW(nodus::output::decode_checkpoint(bytes, longer, "test.nodus-state"));
+  EXPECT_NO_THROW(nodus::persistence::decode_checkpoint(bytes, longer, "test.nodus-state"));
 }
 
 TEST(Checkpoint, FileNames) {
-  EXPECT_EQ(nodus::output::checkpoint_file_name(3, "tighten"), "003_tighten.nodus-state");
-  EXPECT_EQ(nodus::output::checkpoint_file_name(12, "a b/c"), "012_a_b_c.nodus-state");
+  EXPECT_EQ(nodus::persistence::checkpoint_file_name(3, "tighten"), "003_tighten.nodus-state");
+  EXPECT_EQ(nodus::persistence::checkpoint_file_name(12, "a b/c"), "012_a_b_c.nodus-state");
 }
 
 }  // namespace

@@ -6,7 +6,7 @@
 #include <system_error>
 #include <vector>
 
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/contact_table.hpp"
 #include "nodus/output/final_nodes_table.hpp"
@@ -16,7 +16,7 @@ namespace nodus::output {
 StageEndWriter::StageEndWriter(std::filesystem::path dir) : folder_(std::move(dir) / "stages") {}
 
 std::string StageEndWriter::stem(int stage, std::string_view name) {
-  return std::filesystem::path(checkpoint_file_name(stage, name)).stem().string();
+  return std::filesystem::path(persistence::checkpoint_file_name(stage, name)).stem().string();
 }
 
 void StageEndWriter::on_start(const simulation::Simulation& sim) {

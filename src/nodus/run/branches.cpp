@@ -44,7 +44,7 @@ fs::path branch_dir(const fs::path& out, const scenario::BranchSpec& branch) {
 fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& scenario,
                                  const scenario::BranchSpec& branch) {
   return out / "checkpoints" /
-         output::checkpoint_file_name(branch.from,
+         persistence::checkpoint_file_name(branch.from,
                                       scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
 }
 
@@ -86,7 +86,7 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
   const fs::path from =
       start.own ? start.own->path : branch_start_checkpoint(request.out, main_scenario, branch);
   simulation::Simulation branch_sim(scenario::branch_scenario(main_scenario, b));
-  simulation::SimulationState state = output::read_checkpoint(from, branch_sim.scenario());
+  simulation::SimulationState state = persistence::read_checkpoint(from, branch_sim.scenario());
   if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
     throw std::runtime_error(
         fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
@@ -133,10 +133,10 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   BranchStart start;
   if (request.resume) {
     start.finished = fs::exists(dir / "summary.json");
-    if (!start.finished) start.own = output::newest_checkpoint(dir / "checkpoints");
+    if (!start.finished) start.own = persistence::newest_checkpoint(dir / "checkpoints");
   } else {
     fs::remove(dir / "summary.json");
-    output::remove_checkpoints(dir / "checkpoints");
+    persistence::remove_checkpoints(dir / "checkpoints");
   }
   const BranchRun run = run_branch(request, main_scenario, b, start, request.stop_after_steps);
   Outcome outcome;

@@ -10,7 +10,7 @@
 #include <optional>
 #include <vector>
 
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/run/run.hpp"
 #include "nodus/scenario/scenario.hpp"
@@ -22,7 +22,7 @@ namespace nodus::run {
 /// checkpoint, or from the main run's checkpoint of its `from` stage.
 struct BranchStart {
   bool finished = false;
-  std::optional<output::CheckpointInfo> own;  ///< its newest checkpoint, when it has one
+  std::optional<persistence::CheckpointInfo> own;  ///< its newest checkpoint, when it has one
 };
 
 /// What became of one branch.

@@ -9,7 +9,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/run/branches.hpp"
@@ -21,7 +21,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string describe_position(const output::CheckpointInfo& info, const scenario::Scenario& scenario) {
+std::string describe_position(const persistence::CheckpointInfo& info, const scenario::Scenario& scenario) {
   const auto& stages = scenario.stages;
   const std::string where =
       info.stage_begun
@@ -60,13 +60,13 @@ Outcome run(scenario::Scenario scenario, const Request& request) {
                    done.converged ? "converged" : "stopped: " + done.failure);
       return {done.converged, false, true};
     }
-    const auto newest = output::newest_checkpoint(out / "checkpoints");
+    const auto newest = persistence::newest_checkpoint(out / "checkpoints");
     if (!newest)
       throw scenario::ScenarioError(fmt::format(
           "{}: --resume: expected a checkpoint (*.nodus-state) in {}, got none: nothing to resume "
           "(run without --resume to start the run)",
           out.string(), (out / "checkpoints").string()));
-    resumed = output::read_checkpoint(newest->path, main_scenario);
+    resumed = persistence::read_checkpoint(newest->path, main_scenario);
     spdlog::info("resuming from {} ({})", newest->path.string(), describe_position(*newest, main_scenario));
     for (std::size_t b = 0; b < main_scenario.branches.size(); ++b) {
       const scenario::BranchSpec& branch = main_scenario.branches[b];
@@ -74,9 +74,9 @@ Outcome run(scenario::Scenario scenario, const Request& request) {
       BranchStart& start = branch_starts[b];
       start.finished = fs::exists(branch_dir(out, branch) / "summary.json");
       if (start.finished) continue;
-      start.own = output::newest_checkpoint(branch_dir(out, branch) / "checkpoints");
+      start.own = persistence::newest_checkpoint(branch_dir(out, branch) / "checkpoints");
       const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
-      if (fs::exists(from)) output::read_checkpoint(from, branch_scenario);  // checks it
+      if (fs::exists(from)) persistence::read_checkpoint(from, branch_scenario);  // checks it
     }
   }
 
@@ -89,7 +89,7 @@ Outcome run(scenario::Scenario scenario, const Request& request) {
     // Branch results of an earlier run must not pass for finished or resumable ones.
     for (const scenario::BranchSpec& branch : main_scenario.branches) {
       fs::remove(branch_dir(out, branch) / "summary.json");
-      output::remove_checkpoints(branch_dir(out, branch) / "checkpoints");
+      persistence::remove_checkpoints(branch_dir(out, branch) / "checkpoints");
     }
   }
   int steps_left = request.stop_after_steps;

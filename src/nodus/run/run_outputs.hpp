@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/progress_reporter.hpp"
@@ -39,7 +39,7 @@ class RunOutputs {
   output::ContactCsvWriter contact_tables_;
   output::StageEndWriter stage_ends_;
   output::SummaryWriter summary_;
-  output::CheckpointWriter checkpoints_;
+  persistence::CheckpointWriter checkpoints_;
   output::ProgressReporter progress_;
   std::vector<simulation::StepObserver*> observers_;
 };

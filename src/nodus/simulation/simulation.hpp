@@ -82,7 +82,7 @@ struct RunProgress {
 };
 
 /// The complete state of a run between two steps. Restored into a Simulation of the same scenario, the run
-/// continues exactly as the one that saved it (output/checkpoint.hpp stores it in a file).
+/// continues exactly as the one that saved it (persistence/checkpoint_files.hpp stores it in a file).
 struct SimulationState {
   RunProgress progress;
   RunCounters counters;

@@ -1,21 +1,15 @@
-#include "nodus/output/checkpoint.hpp"
+#include "nodus/persistence/state_format.hpp"
 
-#include <algorithm>
-#include <bit>
-#include <cctype>
-#include <fstream>
 #include <sstream>
-#include <stdexcept>
-#include <system_error>
 #include <tuple>
 #include <type_traits>
 #include <vector>
 
 #include <fmt/format.h>
 
-#include "nodus/output/atomic_file.hpp"
+#include "nodus/persistence/binary_codec.hpp"
 
-namespace nodus::output {
+namespace nodus::persistence {
 namespace {
 
 // Mirrors of the structures the format stores field by field: a field added to one of them changes its size
@@ -111,112 +105,9 @@ static_assert(sizeof(loading::AxisAngle::State) == sizeof(AngleFields),
 static_assert(sizeof(simulation::SimulationState) == sizeof(StateFields),
               "store the new field of SimulationState");
 
-/// A damaged or foreign file.
-[[noreturn]] void bad_file(const std::filesystem::path& path, std::string_view expected,
-                           std::string_view got) {
-  throw scenario::ScenarioError(
-      fmt::format("{}: checkpoint: expected {}, got {}", path.string(), expected, got));
-}
-
 std::uint64_t fnv1a(std::string_view bytes) {
   return scenario::fingerprint_hash(bytes);
 }
-
-/// Appends values in the file's byte order.
-class Encoder {
- public:
-  void u8(std::uint8_t v) { out_.push_back(static_cast<char>(v)); }
-  void u32(std::uint32_t v) {
-    for (int k = 0; k < 4; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void u64(std::uint64_t v) {
-    for (int k = 0; k < 8; ++k) u8(static_cast<std::uint8_t>(v >> (8 * k)));
-  }
-  void i32(int v) { u32(static_cast<std::uint32_t>(v)); }
-  void f64(double v) { u64(std::bit_cast<std::uint64_t>(v)); }
-  void boolean(bool v) { u8(v ? 1 : 0); }
-  void count(std::size_t n) { u64(static_cast<std::uint64_t>(n)); }
-  void text(std::string_view s) {
-    count(s.size());
-    out_.append(s);
-  }
-  template <class Derived>
-  void matrix(const Eigen::MatrixBase<Derived>& m) {  // fixed size: the values only
-    for (Eigen::Index i = 0; i < m.size(); ++i) f64(m(i));
-  }
-  void vector(const Eigen::VectorXd& v) {
-    count(static_cast<std::size_t>(v.size()));
-    matrix(v);
-  }
-  void raw(std::string_view bytes) { out_.append(bytes); }
-  const std::string& bytes() const { return out_; }
-
- private:
-  std::string out_;
-};
-
-/// Reads values in the file's byte order; running past the end means a damaged file.
-class Decoder {
- public:
-  Decoder(std::string_view bytes, const std::filesystem::path& path) : bytes_(bytes), path_(path) {}
-
-  std::uint8_t u8() {
-    need(1);
-    return static_cast<std::uint8_t>(bytes_[pos_++]);
-  }
-  std::uint32_t u32() {
-    std::uint32_t v = 0;
-    for (int k = 0; k < 4; ++k) v |= static_cast<std::uint32_t>(u8()) << (8 * k);
-    return v;
-  }
-  std::uint64_t u64() {
-    std::uint64_t v = 0;
-    for (int k = 0; k < 8; ++k) v |= static_cast<std::uint64_t>(u8()) << (8 * k);
-    return v;
-  }
-  int i32() { return static_cast<int>(u32()); }
-  double f64() { return std::bit_cast<double>(u64()); }
-  bool boolean() {
-    const std::uint8_t v = u8();
-    if (v > 1) damaged();
-    return v == 1;
-  }
-  /// A count of items of at least `item_bytes` bytes each.
-  std::size_t count(std::size_t item_bytes) {
-    const std::uint64_t n = u64();
-    if (n > (bytes_.size() - pos_) / std::max<std::size_t>(item_bytes, 1)) damaged();
-    return static_cast<std::size_t>(n);
-  }
-  std::string text() {
-    const std::size_t n = count(1);
-    std::string s(bytes_.substr(pos_, n));
-    pos_ += n;
-    return s;
-  }
-  template <class Fixed>
-  Fixed matrix() {
-    Fixed m;
-    for (Eigen::Index i = 0; i < m.size(); ++i) m(i) = f64();
-    return m;
-  }
-  Eigen::VectorXd vector() {
-    Eigen::VectorXd v(static_cast<Eigen::Index>(count(8)));
-    for (Eigen::Index i = 0; i < v.size(); ++i) v[i] = f64();
-    return v;
-  }
-  std::size_t position() const { return pos_; }
-  [[noreturn]] void damaged() const {
-    bad_file(path_, "a complete checkpoint", "a damaged or truncated file");
-  }
-
- private:
-  void need(std::size_t n) const {
-    if (bytes_.size() - pos_ < n) damaged();
-  }
-  std::string_view bytes_;
-  std::size_t pos_ = 0;
-  const std::filesystem::path& path_;
-};
 
 // ---- the state, field by field ----
 
@@ -457,23 +348,7 @@ CheckpointInfo read_header(Decoder& d, const std::filesystem::path& path, std::u
   return info;
 }
 
-std::string read_bytes(const std::filesystem::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) bad_file(path, "a readable file", "cannot open it");
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  if (in.bad()) bad_file(path, "a readable file", "a read error");
-  return bytes.str();
-}
-
 }  // namespace
-
-std::string checkpoint_file_name(int stage, std::string_view stage_name) {
-  std::string name;
-  for (const char c : stage_name)
-    name += std::isalnum(static_cast<unsigned char>(c)) || c == '_' || c == '.' || c == '-' ? c : '_';
-  return fmt::format("{:03d}_{}{}", stage, name, kCheckpointExtension);
-}
 
 std::string encode_checkpoint(const scenario::Scenario& scenario, const simulation::SimulationState& state) {
   const simulation::RunProgress& progress = state.progress;
@@ -577,76 +452,11 @@ simulation::SimulationState decode_checkpoint(std::string_view bytes, const scen
   return state;
 }
 
-void write_checkpoint(const std::filesystem::path& path, const simulation::Simulation& sim) {
-  write_file_atomically(path, encode_checkpoint(sim.scenario(), sim.snapshot()));
-}
-
-simulation::SimulationState read_checkpoint(const std::filesystem::path& path,
-                                            const scenario::Scenario& scenario) {
-  return decode_checkpoint(read_bytes(path), scenario, path);
-}
-
-CheckpointInfo checkpoint_info(const std::filesystem::path& path) {
-  const std::string bytes = read_bytes(path);
+CheckpointInfo read_checkpoint_header(std::string_view bytes, const std::filesystem::path& path) {
   Decoder d(bytes, path);
   std::uint64_t hash = 0;
   std::string fingerprint;
   return read_header(d, path, hash, fingerprint);
 }
 
-std::optional<CheckpointInfo> newest_checkpoint(const std::filesystem::path& folder) {
-  std::error_code error;
-  if (!std::filesystem::is_directory(folder, error)) return std::nullopt;
-  std::optional<CheckpointInfo> newest;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
-    if (!entry.is_regular_file() || entry.path().extension() != kCheckpointExtension) continue;
-    const CheckpointInfo info = checkpoint_info(entry.path());
-    // At equal steps the stage-end file, then the first name, so that the choice does not depend on the
-    // order of the listing.
-    const auto key = [](const CheckpointInfo& i) {
-      return std::tuple(i.steps, i.path.filename() != kLatestCheckpoint, i.path.filename().string());
-    };
-    if (!newest || key(info) > key(*newest)) newest = info;
-  }
-  if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
-  return newest;
-}
-
-void remove_checkpoints(const std::filesystem::path& folder) {
-  std::error_code error;
-  if (!std::filesystem::is_directory(folder, error)) return;
-  std::vector<std::filesystem::path> stale;
-  for (const auto& entry : std::filesystem::directory_iterator(folder, error))
-    if (entry.is_regular_file() && entry.path().extension() == kCheckpointExtension)
-      stale.push_back(entry.path());
-  if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
-  for (const auto& path : stale) {
-    std::filesystem::remove(path, error);
-    if (error) throw std::runtime_error("cannot remove old file '" + path.string() + "': " + error.message());
-  }
-}
-
-CheckpointWriter::CheckpointWriter(std::filesystem::path dir, int every)
-    : folder_(std::move(dir) / "checkpoints"), every_(every) {
-  if (every_ < 0) throw std::invalid_argument(fmt::format("checkpoints: every = {}, must be >= 0", every_));
-}
-
-void CheckpointWriter::on_start(const simulation::Simulation& sim) {
-  std::error_code error;
-  std::filesystem::create_directories(folder_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + folder_.string() + "': " + error.message());
-  if (sim.start_kind() != simulation::StartKind::resumed) remove_checkpoints(folder_);
-}
-
-void CheckpointWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {
-  if (every_ > 0 && record.step % every_ == 0 && !record.ends_stage)
-    write_checkpoint(folder_ / kLatestCheckpoint, sim);
-}
-
-void CheckpointWriter::on_stage_end(const simulation::Simulation& sim, int stage) {
-  write_checkpoint(
-      folder_ / checkpoint_file_name(stage, sim.scenario().stages.at(static_cast<std::size_t>(stage)).name),
-      sim);
-}
-
-}  // namespace nodus::output
+}  // namespace nodus::persistence
