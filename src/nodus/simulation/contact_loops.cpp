@@ -9,32 +9,10 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/contact/history_transfer.hpp"
+
 namespace nodus::simulation {
 namespace {
-
-/// Reversible displacements stored at the particles' abscissas on each beam, per pair of beams and side
-/// (Sect. 5.2.3): key (beam_i, beam_j, side), values (abscissa, g_rev) sorted by abscissa.
-using HistoryKey = std::tuple<int, int, int>;
-using History = std::map<HistoryKey, std::vector<std::pair<double, Eigen::Vector3d>>>;
-
-/// Linear interpolation between the stored neighbours of s; nothing outside the stored range.
-std::optional<Eigen::Vector3d> interpolate(const std::vector<std::pair<double, Eigen::Vector3d>>& points,
-                                           double s) {
-  if (points.empty() || s < points.front().first || s > points.back().first) return std::nullopt;
-  const auto upper =
-      std::lower_bound(points.begin(), points.end(), s, [](const auto& p, double v) { return p.first < v; });
-  if (upper == points.begin()) return upper->second;
-  const auto lower = std::prev(upper);
-  const double span = upper->first - lower->first;
-  if (!(span > 0.0)) return lower->second;
-  const double w = (s - lower->first) / span;
-  return (1.0 - w) * lower->second + w * upper->second;
-}
-
-double overlap(double a0, double a1, double b0, double b1) {
-  return std::max(
-      0.0, std::min(std::max(a0, a1), std::max(b0, b1)) - std::max(std::min(a0, a1), std::min(b0, b1)));
-}
 
 /// Loop 2 stops after the Newton solve that follows a detection whose new contact elements leave an
 /// out-of-balance force below this fraction of the total normal force. Re-detections on parallel contact
@@ -72,51 +50,10 @@ contact::ContactGeometry ContactLoops::detect() {
 
 void ContactLoops::install(contact::ContactGeometry next) {
   const contact::ContactGeometry& old = problem_.contact_geometry();
-  const std::vector<double>& old_penalty = problem_.zone_penalty();
-  // Penalty of a new zone: that of the old zone of the same pair of beams that overlaps it most.
-  std::vector<double> penalty(next.zones.size(), laws_.penalty);
-  for (std::size_t z = 0; z < next.zones.size(); ++z) {
-    const contact::ProximityZone& n = next.zones[z];
-    double best = 0.0;
-    for (std::size_t o = 0; o < old.zones.size(); ++o) {
-      const contact::ProximityZone& p = old.zones[o];
-      if (p.beam_i != n.beam_i || p.beam_j != n.beam_j) continue;
-      const double common = overlap(n.a, n.b, p.a, p.b) * overlap(n.c, n.d, p.c, p.d);
-      if (common > best) {
-        best = common;
-        penalty[z] = old_penalty[o];
-      }
-    }
-  }
-  // History: committed g_rev stored on both particles' abscissas; a new element takes the mean of the values
-  // interpolated at its two particles.
-  History history;
-  const std::vector<Eigen::Vector3d>& old_reversible = problem_.reversible_committed();
-  for (std::size_t k = 0; k < old.elements.size(); ++k) {
-    const contact::ContactElement& e = old.elements[k];
-    const contact::ProximityZone& z = old.zones[static_cast<std::size_t>(e.zone)];
-    history[{z.beam_i, z.beam_j, 0}].emplace_back(e.particle_i.abscissa, old_reversible[k]);
-    history[{z.beam_i, z.beam_j, 1}].emplace_back(e.particle_j.abscissa, old_reversible[k]);
-  }
-  for (auto& [key, points] : history)
-    std::sort(points.begin(), points.end(), [](const auto& x, const auto& y) { return x.first < y.first; });
-  std::vector<Eigen::Vector3d> reversible(next.elements.size(), Eigen::Vector3d::Zero());
-  for (std::size_t k = 0; k < next.elements.size(); ++k) {
-    const contact::ContactElement& e = next.elements[k];
-    const contact::ProximityZone& z = next.zones[static_cast<std::size_t>(e.zone)];
-    Eigen::Vector3d sum = Eigen::Vector3d::Zero();
-    int count = 0;
-    for (int side = 0; side < 2; ++side) {
-      const auto it = history.find({z.beam_i, z.beam_j, side});
-      if (it == history.end()) continue;
-      const auto value = interpolate(it->second, side == 0 ? e.particle_i.abscissa : e.particle_j.abscissa);
-      if (value) {
-        sum += *value;
-        ++count;
-      }
-    }
-    if (count > 0) reversible[k] = sum / count;
-  }
+  std::vector<double> penalty =
+      contact::transfer_penalties(old, problem_.zone_penalty(), next, laws_.penalty);
+  std::vector<Eigen::Vector3d> reversible =
+      contact::transfer_reversible(old, problem_.reversible_committed(), next);
   problem_.set_contact(std::move(next), std::move(penalty), std::move(reversible));
   newton_.reanalyze();
 }
