@@ -207,27 +207,18 @@ Scenario read_scenario(const std::string& path);
 /// Same, from YAML text; `path` is used in messages only.
 Scenario parse_scenario(const std::string& yaml_text, const std::string& path);
 
-/// The resolved settings, as YAML-like text, for echoing at start.
-std::string describe(const Scenario& scenario);
-
 /// The scenario of branch `branch` of `main` as a run of its own: the stages of `main` up to and including
 /// the branch's `from`, then the branch's stages; contact.friction overridden if the branch says so; no
 /// branches; `origin` set. A run of it that starts from the state of `main` at the end of stage `from`
 /// continues `main` as the branch asks.
 Scenario branch_scenario(const Scenario& main, std::size_t branch);
 
-/// The text that identifies a saved state of a run of `scenario` in which the first `stages_run` stages were
-/// begun (the one in progress included): describe() of everything that made that state (materials, beams,
-/// conditions, solver, contact, those stages, and for a branch its friction), leaving out what may change
-/// between saving and resuming without changing the state: the file path, line numbers, output settings and
-/// the stages still to come.
-std::string state_fingerprint_text(const Scenario& scenario, int stages_run);
-
-/// 64-bit FNV-1a hash of `text` (the fingerprint of a saved state).
-std::uint64_t fingerprint_hash(std::string_view text);
-
 /// The table of all keys of the file format (name, type, unit, default, range, help) as a markdown table;
 /// the same table drives the reader's messages (see keys.hpp) and is pasted into docs/scenario.md.
 std::string scenario_keys_markdown();
 
 }  // namespace nodus::scenario
+
+// The echo and the fingerprint of a scenario: part of this header's API, declared in their own files.
+#include "nodus/scenario/describe.hpp"     // IWYU pragma: export
+#include "nodus/scenario/fingerprint.hpp"  // IWYU pragma: export

@@ -1,0 +1,226 @@
+#include "nodus/scenario/section_readers.hpp"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <Eigen/Geometry>
+
+namespace nodus::scenario {
+
+std::string_view type_name(ConditionType type) {
+  switch (type) {
+    case ConditionType::clamp:
+      return "clamp";
+    case ConditionType::motion:
+      return "motion";
+    case ConditionType::rigid:
+      return "rigid";
+    case ConditionType::load:
+      return "load";
+  }
+  return "?";
+}
+
+/// The unit vector orthogonal to `direction` (unit) made from the coordinate axis least parallel to it.
+Vec3 default_director(const Vec3& direction) {
+  int axis = 0;
+  for (int i = 1; i < 3; ++i) {
+    if (std::abs(direction[i]) < std::abs(direction[axis])) axis = i;
+  }
+  Vec3 director = Vec3::Unit(axis);
+  director -= director.dot(direction) * direction;
+  return director.normalized();
+}
+
+/// |sin| of the angle between two nonzero vectors.
+double sin_angle(const Vec3& a, const Vec3& b) {
+  return a.cross(b).norm() / (a.norm() * b.norm());
+}
+
+std::vector<Material> read_materials(const Reader& reader, const MapView& top, NameTable& names) {
+  std::vector<Material> materials;
+  for (const Field& item : reader.list(top.require("materials"), true)) {
+    const MapView map(reader, item);
+    Material material;
+    const Field name = map.require("name");
+    material.name = reader.name(name);
+    names.add(reader, name, material.name, "materials");
+    material.young_modulus = reader.number(map.require("young_modulus"), [](double v) { return v > 0.0; });
+    material.poisson_ratio =
+        reader.number(map.require("poisson_ratio"), [](double v) { return v >= 0.0 && v < 0.5; });
+    materials.push_back(material);
+  }
+  return materials;
+}
+
+std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
+                                 NameTable& names) {
+  std::vector<BeamSpec> beams;
+  for (const Field& item : reader.list(top.require("beams"), true)) {
+    const MapView map(reader, item);
+    BeamSpec beam;
+    const Field name = map.require("name");
+    beam.name = reader.name(name);
+    names.add(reader, name, beam.name, "beams");
+
+    const Field material = map.require("material");
+    const auto material_index = materials.find(reader.name(material));
+    if (!material_index) {
+      reader.fail(material, fmt::format("the name of a material ({})", name_list(materials.names)));
+    }
+    beam.material = *material_index;
+
+    beam.radius = reader.number(map.require("radius"), [](double v) { return v > 0.0; });
+    beam.length = reader.number(map.require("length"), [](double v) { return v > 0.0; });
+    const Field elements = map.require("elements");
+    beam.elements = reader.integer(elements, [](int v) { return v >= 1; });
+    if (beam.elements > kMaxElements) {
+      reader.fail(elements,
+                  fmt::format("{}, at most {}", expected_text(scenario_key(elements.pattern)), kMaxElements));
+    }
+    if (const auto start = map.get("start")) beam.start = reader.vec(*start);
+
+    if (const auto direction = map.get("direction")) {
+      const Vec3 value = reader.vec(*direction);
+      const double norm = value.stableNorm();
+      if (!(norm > 0.0)) reader.fail(*direction);
+      beam.direction = value / norm;
+    }
+    if (const auto director1 = map.get("director1")) {
+      Vec3 value = reader.vec(*director1);
+      const double norm = value.stableNorm();
+      if (!(norm > 0.0) || sin_angle(beam.direction, value / norm) < kDirectorParallelTolerance) {
+        reader.fail(*director1);
+      }
+      value /= norm;
+      value -= value.dot(beam.direction) * beam.direction;
+      beam.director1 = value.normalized();
+    } else {
+      beam.director1 = default_director(beam.direction);
+    }
+    if (const auto factor = map.get("bending_factor")) {
+      beam.bending_factor = reader.number(*factor, [](double v) { return v > 0.0; });
+    }
+    beams.push_back(beam);
+  }
+  return beams;
+}
+
+namespace {
+
+/// The nine dofs selected by a list of dof items.
+DofMask read_dofs(const Reader& reader, const Field& field) {
+  DofMask mask{};
+  const std::vector<Field> items = reader.list(field, true);
+  const std::string expected =
+      "one of all | position | directors | x | y | z | g1x | g1y | g1z | g2x | g2y | g2z";
+  for (const Field& item : items) {
+    const std::string text = is_plain_scalar(item.node) ? item.node.Scalar() : std::string();
+    if (text == "all") {
+      mask.fill(true);
+    } else if (text == "position") {
+      mask[kX] = mask[kY] = mask[kZ] = true;
+    } else if (text == "directors") {
+      for (int dof = kG1x; dof <= kG2z; ++dof) mask[dof] = true;
+    } else {
+      const auto* found = std::find(std::begin(kDofNames), std::end(kDofNames), text);
+      if (found == std::end(kDofNames)) reader.fail(item, expected);
+      mask[found - std::begin(kDofNames)] = true;
+    }
+  }
+  return mask;
+}
+
+}  // namespace
+
+std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& top,
+                                           const NameTable& beam_names, const std::vector<BeamSpec>& beams,
+                                           NameTable& names, MomentAxes& moment_axes) {
+  std::vector<ConditionSpec> conditions;
+  const auto list = top.get("conditions");
+  if (!list) return conditions;
+  for (const Field& item : reader.list(*list, false)) {
+    const MapView map(reader, item);
+    ConditionSpec condition;
+    condition.line = map.line();
+    const Field name = map.require("name");
+    condition.name = reader.name(name);
+    names.add(reader, name, condition.name, "conditions");
+
+    const std::string type = reader.choice(map.require("type"));
+    condition.type = type == "clamp"    ? ConditionType::clamp
+                     : type == "motion" ? ConditionType::motion
+                     : type == "rigid"  ? ConditionType::rigid
+                                        : ConditionType::load;
+
+    const Field beam = map.require("beam");
+    const auto beam_index = beam_names.find(reader.name(beam));
+    if (!beam_index) reader.fail(beam, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
+    condition.beam = *beam_index;
+
+    const auto pivot = map.get("pivot");
+    if (pivot) {
+      if (condition.type != ConditionType::motion && condition.type != ConditionType::rigid)
+        reader.fail(*pivot,
+                    fmt::format("no pivot on a {} condition (pivot is for motion and rigid conditions)",
+                                type_name(condition.type)));
+      condition.pivot = reader.vec(*pivot);
+    }
+    if (condition.type == ConditionType::rigid) {  // the whole beam, all dofs
+      for (const char* key : {"at", "dofs", "force", "moment"})
+        if (const auto value = map.get(key))
+          reader.fail(*value,
+                      fmt::format("no {} on a rigid condition (it moves every node of its beam)", key));
+      condition.dofs.fill(true);
+      if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+      conditions.push_back(condition);
+      continue;
+    }
+
+    const Field at = map.require("at");
+    const int last_node = 2 * beams[condition.beam].elements;
+    const std::string at_text = is_plain_scalar(at.node) ? at.node.Scalar() : std::string();
+    if (at_text == "start") {
+      condition.node = 0;
+    } else if (at_text == "end") {
+      condition.node = last_node;
+    } else {
+      const auto node = parse_integer(at.node);
+      if (!node || *node < 0 || *node > last_node) {
+        reader.fail(at, fmt::format("one of start | end | an integer in [0, {}] (beam {}: elements {})",
+                                    last_node, beams[condition.beam].name, beams[condition.beam].elements));
+      }
+      condition.node = static_cast<int>(*node);
+    }
+
+    const auto dofs = map.get("dofs");
+    if (condition.type == ConditionType::load) {
+      if (dofs) reader.fail(*dofs, "no dofs on a load condition (dofs are for clamp and motion conditions)");
+    } else {
+      condition.dofs =
+          dofs ? read_dofs(reader, *dofs) : DofMask{true, true, true, true, true, true, true, true, true};
+    }
+
+    if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+
+    for (const char* key : {"force", "moment"}) {
+      const auto value = map.get(key);
+      if (!value) continue;
+      if (condition.type != ConditionType::load) {
+        reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
+                                        type_name(condition.type), key));
+      }
+      if (std::string_view(key) == "force") {
+        condition.force = reader.vec(*value);
+      } else {
+        condition.moment = reader.vec(*value);
+        moment_axes.check(reader, static_cast<int>(conditions.size()), condition.moment, *value);
+      }
+    }
+    conditions.push_back(condition);
+  }
+  return conditions;
+}
+
+}  // namespace nodus::scenario

@@ -1,0 +1,103 @@
+#pragma once
+/// The readers of the sections of a scenario file, each turning one part of the YAML tree into its part of
+/// Scenario, with the one-line messages of Reader. Internal to the scenario module: model_readers.cpp
+/// (materials, beams, conditions), loading_readers.cpp (stages, branches), settings_readers.cpp (units,
+/// solver, output, contact).
+
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include "nodus/scenario/scenario.hpp"
+#include "nodus/scenario/yaml_reader.hpp"
+
+namespace nodus::scenario {
+
+/// director1 may not be within this |sin angle| of direction.
+constexpr double kDirectorParallelTolerance = 1e-6;
+/// Nonzero moments of one load must be parallel within this |sin angle|.
+constexpr double kMomentAxisTolerance = 1e-9;
+/// Upper limit of beams[].elements, so that node indices 2 * elements fit an int with room to spare.
+constexpr int kMaxElements = 100'000'000;
+
+constexpr std::string_view kDofNames[] = {"x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"};
+
+/// The word of the file for a condition type: clamp, motion, rigid, load.
+std::string_view type_name(ConditionType type);
+
+/// The unit vector orthogonal to `direction` (unit) made from the coordinate axis least parallel to it.
+Vec3 default_director(const Vec3& direction);
+
+/// |sin| of the angle between two nonzero vectors.
+double sin_angle(const Vec3& a, const Vec3& b);
+
+/// Checks that every nonzero moment of each load keeps the axis of the first nonzero one.
+class MomentAxes {
+ public:
+  void check(const Reader& reader, int condition, const Vec3& moment, const Field& field) {
+    if (moment.squaredNorm() == 0.0) return;
+    const auto found = first_.find(condition);
+    if (found == first_.end()) {
+      first_.emplace(condition, std::pair{moment, fmt::format("{} (line {})", field.path, field.line)});
+      return;
+    }
+    if (sin_angle(found->second.first, moment) >= kMomentAxisTolerance) {
+      reader.fail(field, fmt::format("a moment parallel to {} given at {} (moment axis must stay fixed)",
+                                     format_vec(found->second.first), found->second.second));
+    }
+  }
+
+  /// The direction of the first nonzero moment of `condition` (unit); none if it had none.
+  std::optional<Vec3> axis(int condition) const {
+    const auto found = first_.find(condition);
+    if (found == first_.end()) return std::nullopt;
+    return found->second.first.normalized();
+  }
+
+ private:
+  std::map<int, std::pair<Vec3, std::string>> first_;
+};
+
+/// The value (force, moment) each load has, by condition.
+using LoadValues = std::map<int, std::pair<Vec3, Vec3>>;
+
+/// The values the loads start with: their initial values.
+LoadValues initial_load_values(const std::vector<ConditionSpec>& conditions);
+
+void read_units(const Reader& reader, const MapView& top);
+
+std::vector<Material> read_materials(const Reader& reader, const MapView& top, NameTable& names);
+
+std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
+                                 NameTable& names);
+
+std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& top,
+                                           const NameTable& beam_names, const std::vector<BeamSpec>& beams,
+                                           NameTable& names, MomentAxes& moment_axes);
+
+/// A list of stages (`stages`, or a branch's `stages`: `list` then has the pattern "stages" and its own
+/// path). `load_values`: the value of each load at the start of the first stage, updated stage by stage;
+/// `after_each`, if given, receives them after each stage. `stage_names` receives the names.
+std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, const NameTable& condition_names,
+                                   const std::vector<ConditionSpec>& conditions, const NameTable& beam_names,
+                                   const ContactSettings& contact, MomentAxes& moment_axes,
+                                   LoadValues& load_values, NameTable& stage_names,
+                                   std::vector<LoadValues>* after_each = nullptr);
+
+std::vector<BranchSpec> read_branches(const Reader& reader, const MapView& top, const NameTable& stage_names,
+                                      const std::vector<LoadValues>& load_values_after,
+                                      const NameTable& condition_names,
+                                      const std::vector<ConditionSpec>& conditions,
+                                      const NameTable& beam_names, const ContactSettings& contact,
+                                      bool has_contact_section, MomentAxes& moment_axes);
+
+SolverSettings read_solver(const Reader& reader, const MapView& top);
+
+OutputSettings read_output(const Reader& reader, const MapView& top);
+
+ContactSettings read_contact(const Reader& reader, const MapView& top, const NameTable& beam_names);
+
+}  // namespace nodus::scenario
