@@ -2,9 +2,13 @@
 
 #include <algorithm>
 #include <cctype>
+#include <functional>
+#include <span>
+#include <type_traits>
 
 #include <fmt/format.h>
 
+#include "nodus/scenario/declared_keys.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/scenario/section_readers.hpp"
 #include "nodus/scenario/yaml_reader.hpp"
@@ -110,6 +114,22 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
   }
 }
 
+/// The declared scalar keys of one section, "  KEY: VALUE  # UNIT" each, in declaration order; a structural
+/// key is handed to `structural`, which prints it.
+template <class Owner>
+void describe_keys(std::string& out, std::span<const Key<Owner>> keys, const Owner& owner,
+                   const std::function<void(const Key<std::type_identity_t<Owner>>&)>& structural = {}) {
+  for (const Key<Owner>& key : keys) {
+    if (!key.scalar()) {
+      if (structural) structural(key);
+      continue;
+    }
+    out += fmt::format("  {}: {}", leaf_name(key.path), value_text(key, owner));
+    if (!key.unit.empty()) out += fmt::format("  # {}", key.unit);
+    out += '\n';
+  }
+}
+
 }  // namespace
 
 std::string describe(const Scenario& scenario) {
@@ -172,63 +192,27 @@ std::string describe(const Scenario& scenario) {
   line("stages:");
   describe_stages(out, scenario, scenario.stages, "");
 
-  const SolverSettings& solver = scenario.solver;
   line("solver:");
-  line(fmt::format("  linear_solver: {}",
-                   solver.linear_solver == LinearSolverKind::cholmod ? "cholmod" : "umfpack"));
-  line(fmt::format("  max_newton_iterations: {}", solver.max_newton_iterations));
-  line(fmt::format("  residual_tolerance: {}", format_number(solver.residual_tolerance)));
-  line(fmt::format("  increment_tolerance: {}", format_number(solver.increment_tolerance)));
-  line(fmt::format("  max_cutbacks: {}", solver.max_cutbacks));
-  line(fmt::format("  easy_iterations: {}", solver.easy_iterations));
-  line(fmt::format("  line_search: {}", solver.line_search ? "true" : "false"));
-  line(fmt::format("  gauss_points: {}", solver.gauss_points));
-  line(fmt::format("  fold_stiffness: {}", format_number(solver.fold_stiffness)));
-
-  const OutputSettings& output = scenario.output;
+  describe_keys(out, SolverSettings::keys(), scenario.solver);
   line("output:");
-  line(fmt::format("  vtk_every: {}", output.vtk_every));
-  line(fmt::format("  tube_sides: {}", output.tube_sides));
-  line(fmt::format("  progress_seconds: {}  # s", format_number(output.progress_seconds)));
-  line(fmt::format("  contact_csv: {}", output.contact_csv ? "true" : "false"));
-  line(fmt::format("  checkpoint_every: {}", output.checkpoint_every));
-
-  const ContactSettings& contact = scenario.contact;
+  describe_keys(out, OutputSettings::keys(), scenario.output);
   line("contact:");
-  line(fmt::format("  enabled: {}", contact.enabled ? "true" : "false"));
-  line(fmt::format("  self_contact: {}", contact.self_contact ? "true" : "false"));
-  std::string beams = "[";
-  if (contact.beams.empty()) {
-    for (std::size_t i = 0; i < scenario.beams.size(); ++i) {
-      beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams[i].name);
+  describe_keys(out, ContactSettings::keys(), scenario.contact, [&](const Key<ContactSettings>& key) {
+    if (key.path != "contact.beams") return;
+    const ContactSettings& contact = scenario.contact;
+    std::string beams = "[";
+    if (contact.beams.empty()) {
+      for (std::size_t i = 0; i < scenario.beams.size(); ++i) {
+        beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams[i].name);
+      }
+      line(fmt::format("  beams: {}]  # all beams", beams));
+    } else {
+      for (std::size_t i = 0; i < contact.beams.size(); ++i) {
+        beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams.at(contact.beams[i]).name);
+      }
+      line(fmt::format("  beams: {}]", beams));
     }
-    line(fmt::format("  beams: {}]  # all beams", beams));
-  } else {
-    for (std::size_t i = 0; i < contact.beams.size(); ++i) {
-      beams += (i > 0 ? ", " : "") + yaml_name(scenario.beams.at(contact.beams[i]).name);
-    }
-    line(fmt::format("  beams: {}]", beams));
-  }
-  const auto or_auto = [&line](std::string_view key, double value, std::string_view unit) {
-    line(fmt::format("  {}: {}  # {}", key, value > 0.0 ? format_number(value) : std::string("auto"), unit));
-  };
-  or_auto("proximity_distance", contact.proximity_distance, "mm");
-  or_auto("separation_distance", contact.separation_distance, "mm");
-  or_auto("test_point_spacing", contact.test_point_spacing, "mm");
-  or_auto("matching_length", contact.matching_length, "mm");
-  or_auto("element_spacing", contact.element_spacing, "mm");
-  line(fmt::format("  forces: {}", contact.forces ? "true" : "false"));
-  or_auto("penalty", contact.penalty, "N/mm");
-  or_auto("max_penetration", contact.max_penetration, "mm");
-  or_auto("regularization", contact.regularization, "mm");
-  line(fmt::format("  friction: {}", format_number(contact.friction)));
-  or_auto("max_reversible_slip", contact.max_reversible_slip, "mm");
-  line(fmt::format("  friction_tangent: {}",
-                   contact.friction_tangent == FrictionTangent::varying ? "varying" : "frozen"));
-  line(fmt::format("  particles: {}", contact.facing_particles ? "facing" : "fixed"));
-  line(fmt::format("  max_detections: {}", contact.max_detections));
-  line(fmt::format("  max_normal_iterations: {}", contact.max_normal_iterations));
-  line(fmt::format("  normal_tolerance: {}  # rad", format_number(contact.normal_tolerance)));
+  });
 
   if (!scenario.branches.empty()) {
     line("branches:");

@@ -1,5 +1,7 @@
 #include "nodus/scenario/section_readers.hpp"
 
+#include "nodus/scenario/declared_keys.hpp"
+
 #include <algorithm>
 #include <cctype>
 
@@ -154,18 +156,12 @@ std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, cons
     const Field name = map.require("name");
     stage.name = reader.name(name);
     stage_names.add(reader, name, stage.name, "stages");
-    stage.steps = reader.integer(map.require("steps"), [](int v) { return v >= 1; });
-    if (const auto duration = map.get("duration")) {
-      stage.duration = reader.number(*duration, [](double v) { return v > 0.0; });
-    }
-    if (const auto value = map.get("stabilization")) {
-      stage.stabilization = reader.number(*value, [](double v) { return v >= 0.0; });
-    }
-    stage.stabilization_end = stage.stabilization;
+    read_keys(reader, map, StageSpec::keys(), stage);
     if (const auto value = map.get("stabilization_end")) {
-      stage.stabilization_end = reader.number(*value, [](double v) { return v >= 0.0; });
       if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
-        reader.fail(*value, "0 when stabilization is 0 (the decay is geometric from stabilization)");
+        reader.fail(*value, kStabilizationEndExpected);
+    } else {
+      stage.stabilization_end = stage.stabilization;
     }
 
     stage.activate = read_condition_names(reader, map.get("activate"), condition_names, "activate");

@@ -1,5 +1,7 @@
 #include "nodus/scenario/section_readers.hpp"
 
+#include "nodus/scenario/declared_keys.hpp"
+
 #include <algorithm>
 #include <cmath>
 
@@ -46,9 +48,7 @@ std::vector<Material> read_materials(const Reader& reader, const MapView& top, N
     const Field name = map.require("name");
     material.name = reader.name(name);
     names.add(reader, name, material.name, "materials");
-    material.young_modulus = reader.number(map.require("young_modulus"), [](double v) { return v > 0.0; });
-    material.poisson_ratio =
-        reader.number(map.require("poisson_ratio"), [](double v) { return v >= 0.0 && v < 0.5; });
+    read_keys(reader, map, Material::keys(), material);
     materials.push_back(material);
   }
   return materials;
@@ -71,10 +71,8 @@ std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const
     }
     beam.material = *material_index;
 
-    beam.radius = reader.number(map.require("radius"), [](double v) { return v > 0.0; });
-    beam.length = reader.number(map.require("length"), [](double v) { return v > 0.0; });
+    read_keys(reader, map, BeamSpec::keys(), beam);
     const Field elements = map.require("elements");
-    beam.elements = reader.integer(elements, [](int v) { return v >= 1; });
     if (beam.elements > kMaxElements) {
       reader.fail(elements,
                   fmt::format("{}, at most {}", expected_text(scenario_key(elements.pattern)), kMaxElements));
@@ -98,9 +96,6 @@ std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const
       beam.director1 = value.normalized();
     } else {
       beam.director1 = default_director(beam.direction);
-    }
-    if (const auto factor = map.get("bending_factor")) {
-      beam.bending_factor = reader.number(*factor, [](double v) { return v > 0.0; });
     }
     beams.push_back(beam);
   }
@@ -148,11 +143,8 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
     condition.name = reader.name(name);
     names.add(reader, name, condition.name, "conditions");
 
-    const std::string type = reader.choice(map.require("type"));
-    condition.type = type == "clamp"    ? ConditionType::clamp
-                     : type == "motion" ? ConditionType::motion
-                     : type == "rigid"  ? ConditionType::rigid
-                                        : ConditionType::load;
+    const std::span<const Key<ConditionSpec>> keys = ConditionSpec::keys();
+    read_key(reader, map.require("type"), declared(keys, "conditions[].type"), condition);
 
     const Field beam = map.require("beam");
     const auto beam_index = beam_names.find(reader.name(beam));
@@ -173,7 +165,8 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
           reader.fail(*value,
                       fmt::format("no {} on a rigid condition (it moves every node of its beam)", key));
       condition.dofs.fill(true);
-      if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+      if (const auto active = map.get("active"))
+        read_key(reader, *active, declared(keys, "conditions[].active"), condition);
       conditions.push_back(condition);
       continue;
     }
@@ -202,7 +195,8 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
           dofs ? read_dofs(reader, *dofs) : DofMask{true, true, true, true, true, true, true, true, true};
     }
 
-    if (const auto active = map.get("active")) condition.initially_active = reader.boolean(*active);
+    if (const auto active = map.get("active"))
+      read_key(reader, *active, declared(keys, "conditions[].active"), condition);
 
     for (const char* key : {"force", "moment"}) {
       const auto value = map.get(key);

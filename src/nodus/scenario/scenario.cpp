@@ -43,14 +43,9 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_stages(reader, top.require("stages"), condition_names, scenario.conditions, beam_names,
                   scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
-  // CHOLMOD reads one triangle of the tangent: the varying friction tangent, not symmetric, needs LU. Asked
-  // for explicitly rather than switched on behind the user's back, so that the file says which solver runs.
   if (scenario.contact.friction_tangent == FrictionTangent::varying &&
       scenario.solver.linear_solver != LinearSolverKind::umfpack) {
-    reader.fail(
-        *MapView(reader, *top.get("contact")).get("friction_tangent"),
-        "frozen with solver.linear_solver: cholmod (the varying tangent is not symmetric and needs LU: "
-        "set solver.linear_solver: umfpack)");
+    reader.fail(*MapView(reader, *top.get("contact")).get("friction_tangent"), kFrictionTangentExpected);
   }
   scenario.output = read_output(reader, top);
   scenario.branches =

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -12,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/scenario/key.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/newton.hpp"
 
@@ -30,7 +32,25 @@ struct Material {
   std::string name;
   double young_modulus = 0.0;  ///< E [MPa], > 0
   double poisson_ratio = 0.0;  ///< nu [-], in [0, 0.5)
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<Material>> keys();
 };
+
+inline std::span<const Key<Material>> Material::keys() {
+  using K = Key<Material>;
+  static const K keys[] = {
+      K::doc("materials[].name", KeyType::string, "", "required", "unique among materials",
+             "name by which beams refer to the material"),
+      K::real("materials[].young_modulus", &Material::young_modulus, "MPa", "> 0", ranges::positive,
+              "Young's modulus E")
+          .shown_default("required"),
+      K::real("materials[].poisson_ratio", &Material::poisson_ratio, "", "in [0, 0.5)",
+              ranges::below_one_half, "Poisson's ratio nu; the shear modulus is E / (2 (1 + nu))")
+          .shown_default("required"),
+  };
+  return keys;
+}
 
 /// A straight beam in its reference configuration.
 struct BeamSpec {
@@ -44,7 +64,36 @@ struct BeamSpec {
   Vec3 director1 =
       Vec3::UnitY();  ///< unit first section director, orthogonal to direction (made so by the reader)
   double bending_factor = 1.0;  ///< multiplies the second moment of area in bending (Table 1: 0.3), > 0
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<BeamSpec>> keys();
 };
+
+inline std::span<const Key<BeamSpec>> BeamSpec::keys() {
+  using K = Key<BeamSpec>;
+  static const K keys[] = {
+      K::doc("beams[].name", KeyType::string, "", "required", "unique among beams",
+             "name by which conditions refer to the beam"),
+      K::doc("beams[].material", KeyType::string, "", "required", "naming a material", "the beam's material"),
+      K::real("beams[].radius", &BeamSpec::radius, "mm", "> 0", ranges::positive,
+              "radius of the circular cross-section")
+          .shown_default("required"),
+      K::real("beams[].length", &BeamSpec::length, "mm", "> 0", ranges::positive, "length of the beam axis")
+          .shown_default("required"),
+      K::whole("beams[].elements", &BeamSpec::elements, ">= 1", ranges::at_least_one,
+               "number of 3-node quadratic elements; the beam has nodes 0 .. 2 elements")
+          .shown_default("required"),
+      K::doc("beams[].start", KeyType::vector, "mm", "[0, 0, 0]", "", "centre of the first end section"),
+      K::doc("beams[].direction", KeyType::vector, "", "[1, 0, 0]", "with nonzero length",
+             "axis direction from start to end; normalised by the reader"),
+      K::doc("beams[].director1", KeyType::vector, "", "auto", "not parallel to direction",
+             "first section director; orthogonalised against direction and normalised. auto: "
+             "the coordinate axis least parallel to direction, orthogonalised"),
+      K::real("beams[].bending_factor", &BeamSpec::bending_factor, "", "> 0", ranges::positive,
+              "multiplies the second moment of area in bending (Table 1 of the paper uses 0.3)"),
+  };
+  return keys;
+}
 
 /// Index of the nine nodal unknowns: centre r, then directors g1 and g2.
 enum Dof : int { kX = 0, kY, kZ, kG1x, kG1y, kG1z, kG2x, kG2y, kG2z };
@@ -72,25 +121,120 @@ struct ConditionSpec {
   /// (initial value, stages, then the branches' stages); none if every value is zero. Set by the reader.
   std::optional<Vec3> moment_axis;
   int line = 0;  ///< line of the condition in the file (for messages)
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<ConditionSpec>> keys();
 };
+
+inline std::span<const Key<ConditionSpec>> ConditionSpec::keys() {
+  using K = Key<ConditionSpec>;
+  static const K keys[] = {
+      K::doc("conditions[].name", KeyType::string, "", "required", "unique among conditions",
+             "name by which stages refer to the condition"),
+      K::choice(
+          "conditions[].type", "clamp | motion | rigid | load",
+          [](const ConditionSpec& c) { return static_cast<int>(c.type); },
+          [](ConditionSpec& c, int i) { c.type = static_cast<ConditionType>(i); },
+          "clamp: keep the dofs at their values on activation; motion: prescribed "
+          "translation and rotation; rigid: the whole beam follows a rigid motion (a tool "
+          "beam, never released); load: force and moment")
+          .shown_default("required"),
+      K::doc("conditions[].beam", KeyType::string, "", "required", "naming a beam",
+             "the beam the condition acts on"),
+      K::doc("conditions[].at", KeyType::choice, "", "required",
+             "start | end | an integer in [0, 2 elements]",
+             "the cross-section: start (node 0), end (node 2 elements) or a local node index; "
+             "not on rigid"),
+      K::doc("conditions[].pivot", KeyType::vector, "mm", "-", "motion and rigid only",
+             "the fixed point the prescribed rotation turns the section centres about, r = p +"
+             " u + Q (r0 - p); default: the section centre (motion), the centre of the beam's "
+             "middle node at activation (rigid)"),
+      K::doc("conditions[].dofs", KeyType::list, "", "[all]",
+             "of at least one of all | position | directors | x | y | z | g1x | g1y | g1z | "
+             "g2x | g2y | g2z",
+             "clamp and motion only: the constrained dofs, the union of the items (position = "
+             "x, y, z; directors = the six g*)"),
+      K::flag("conditions[].active", &ConditionSpec::initially_active, "active from the first stage on"),
+      K::doc("conditions[].force", KeyType::vector, "N", "[0, 0, 0]", "",
+             "load only: initial dead force on the section centre"),
+      K::doc("conditions[].moment", KeyType::vector, "N mm", "[0, 0, 0]", "",
+             "load only: initial moment about the fixed axis of its vector"),
+  };
+  return keys;
+}
 
 /// A keyframe of a prescribed motion inside a stage, cumulative since the condition was activated.
 struct Keyframe {
   double at = 1.0;                  ///< fraction of the stage, in (0, 1], increasing
   Vec3 translation = Vec3::Zero();  ///< of the section centre [mm]
   Vec3 rotation = Vec3::Zero();     ///< rotation vector of the section [degrees]
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<Keyframe>> keys();
 };
+
+inline std::span<const Key<Keyframe>> Keyframe::keys() {
+  using K = Key<Keyframe>;
+  static const K keys[] = {
+      K::real("stages[].motions.<condition>.keyframes[].at", &Keyframe::at, "",
+              "in (0, 1], increasing, the last one = 1", ranges::fraction,
+              "fraction of the stage at which the keyframe is reached")
+          .shown_default("required"),
+      K::doc("stages[].motions.<condition>.keyframes[].translation", KeyType::vector, "mm", "[0, 0, 0]", "",
+             "translation of the section centre, cumulative since activation"),
+      K::doc("stages[].motions.<condition>.keyframes[].rotation", KeyType::vector, "deg", "[0, 0, 0]", "",
+             "rotation vector of the section, cumulative since activation"),
+  };
+  return keys;
+}
 
 struct MotionTarget {
   int condition = 0;                ///< index into Scenario::conditions (type motion)
   std::vector<Keyframe> keyframes;  ///< at least one; the last one has at = 1
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<MotionTarget>> keys();
 };
+
+inline std::span<const Key<MotionTarget>> MotionTarget::keys() {
+  using K = Key<MotionTarget>;
+  static const K keys[] = {
+      K::doc("stages[].motions.<condition>", KeyType::map, "", "required",
+             "with translation/rotation or keyframes", "the target of one motion condition"),
+      K::doc("stages[].motions.<condition>.translation", KeyType::vector, "mm", "[0, 0, 0]", "",
+             "short form: translation of the section centre at stage end, cumulative since "
+             "activation"),
+      K::doc("stages[].motions.<condition>.rotation", KeyType::vector, "deg", "[0, 0, 0]", "",
+             "short form: rotation vector of the section at stage end, cumulative since "
+             "activation"),
+      K::doc("stages[].motions.<condition>.keyframes", KeyType::list, "", "-",
+             "non-empty, not next to translation or rotation", "long form: keyframes inside the stage"),
+  };
+  return keys;
+}
 
 struct LoadTarget {
   int condition = 0;           ///< index into Scenario::conditions (type load)
   Vec3 force = Vec3::Zero();   ///< value reached at the end of the stage [N]
   Vec3 moment = Vec3::Zero();  ///< value reached at the end of the stage [N mm]
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<LoadTarget>> keys();
 };
+
+inline std::span<const Key<LoadTarget>> LoadTarget::keys() {
+  using K = Key<LoadTarget>;
+  static const K keys[] = {
+      K::doc("stages[].loads.<condition>", KeyType::map, "", "required", "with force and/or moment",
+             "the target of one load condition"),
+      K::doc("stages[].loads.<condition>.force", KeyType::vector, "N", "unchanged", "",
+             "force at stage end; omitted: keeps its value at stage start"),
+      K::doc("stages[].loads.<condition>.moment", KeyType::vector, "N mm", "unchanged",
+             "parallel to the load's other nonzero moments",
+             "moment at stage end; omitted: keeps its value at stage start"),
+  };
+  return keys;
+}
 
 /// One stage of the loading program.
 struct StageSpec {
@@ -107,7 +251,48 @@ struct StageSpec {
   /// value of 0 decays to 1e-6 of the start value and is exactly 0 at the stage end); 0: none.
   double stabilization = 0.0;
   double stabilization_end = 0.0;
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<StageSpec>> keys();
 };
+
+inline std::span<const Key<StageSpec>> StageSpec::keys() {
+  using K = Key<StageSpec>;
+  static const K keys[] = {
+      K::doc("stages[].name", KeyType::string, "", "required", "unique among stages",
+             "name shown in progress output"),
+      K::whole("stages[].steps", &StageSpec::steps, ">= 1", ranges::at_least_one,
+               "number of nominal load steps")
+          .shown_default("required"),
+      K::real("stages[].duration", &StageSpec::duration, "s", "> 0", ranges::positive,
+              "length of the stage in load time"),
+      K::real("stages[].stabilization", &StageSpec::stabilization, "N s/mm^2", ">= 0", ranges::non_negative,
+              "viscous drag per unit length on the beams during the stage, force = -value * "
+              "(velocity in load time) on the axis and value * R^2/4 on each director; a "
+              "numerical aid to pass snap-throughs, off (0) or vanished (the beams at rest) "
+              "where results are read (docs/model.md)"),
+      K::real("stages[].stabilization_end", &StageSpec::stabilization_end, "N s/mm^2", ">= 0",
+              ranges::non_negative,
+              "the drag at the stage end, reached geometrically from stabilization; 0: decays "
+              "to 1e-6 of it and is exactly 0 at the stage end")
+          .shown_default("stabilization"),
+      K::doc("stages[].activate", KeyType::list, "", "[]", "of condition names",
+             "conditions switched on at the start of the stage"),
+      K::doc("stages[].release", KeyType::list, "", "[]", "of condition names, none also in activate",
+             "conditions switched off at the start of the stage"),
+      K::doc("stages[].contact_off", KeyType::list, "", "[]", "of contact beam names",
+             "beams taken out of contact at the start of the stage (a tool removed); they stay"
+             " where they are"),
+      K::doc("stages[].contact_on", KeyType::list, "", "[]",
+             "of contact beam names, none also in contact_off",
+             "beams put back into contact at the start of the stage"),
+      K::doc("stages[].motions", KeyType::map, "", "{}", "from motion or rigid condition names to targets",
+             "prescribed motions reached during the stage"),
+      K::doc("stages[].loads", KeyType::map, "", "{}", "from load condition names to targets",
+             "load values reached at the end of the stage"),
+  };
+  return keys;
+}
 
 enum class LinearSolverKind { cholmod, umfpack };
 
@@ -127,7 +312,41 @@ struct SolverSettings {
   bool line_search = ::nodus::solver::NewtonSettings{}.line_search;
   int gauss_points = 2;         ///< Gauss points per element along the axis, 1..5
   double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (beam_element.hpp), >= 0
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<SolverSettings>> keys();
 };
+
+inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
+  using K = Key<SolverSettings>;
+  static const K keys[] = {
+      K::choice(
+          "solver.linear_solver", "cholmod | umfpack",
+          [](const SolverSettings& c) { return static_cast<int>(c.linear_solver); },
+          [](SolverSettings& c, int i) { c.linear_solver = static_cast<LinearSolverKind>(i); },
+          "sparse direct solver: cholmod (Cholesky) or umfpack (LU)"),
+      K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
+               ranges::at_least_one, "iterations per step attempt"),
+      K::real("solver.residual_tolerance", &SolverSettings::residual_tolerance, "", "> 0", ranges::positive,
+              "converged when the residual norm <= tolerance times the force scale"),
+      K::real("solver.increment_tolerance", &SolverSettings::increment_tolerance, "", "> 0", ranges::positive,
+              "converged when the largest increment <= tolerance times the length scale"),
+      K::whole("solver.max_cutbacks", &SolverSettings::max_cutbacks, ">= 0", ranges::non_negative,
+               "successive halvings of a step before giving up"),
+      K::whole("solver.easy_iterations", &SolverSettings::easy_iterations, ">= 1", ranges::at_least_one,
+               "a step converged in at most this many iterations lets the next step grow"),
+      K::flag("solver.line_search", &SolverSettings::line_search,
+              "damp Newton updates by a line search on the energy slope (off: faster on every "
+              "verification case, docs/model.md)"),
+      K::whole("solver.gauss_points", &SolverSettings::gauss_points, "in 1..5", ranges::one_to_five,
+               "Gauss points per element along the axis (2: reduced integration, free of "
+               "locking; docs/model.md)"),
+      K::real("solver.fold_stiffness", &SolverSettings::fold_stiffness, "", ">= 0", ranges::non_negative,
+              "beta of the energy that keeps a 2-point element from folding back on itself at "
+              "no cost; 0: none (docs/model.md)"),
+  };
+  return keys;
+}
 
 struct OutputSettings {
   int vtk_every = 1;              ///< write a VTK file every N converged steps (0: only the final state)
@@ -135,7 +354,30 @@ struct OutputSettings {
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
   bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<OutputSettings>> keys();
 };
+
+inline std::span<const Key<OutputSettings>> OutputSettings::keys() {
+  using K = Key<OutputSettings>;
+  static const K keys[] = {
+      K::whole("output.vtk_every", &OutputSettings::vtk_every, ">= 0", ranges::non_negative,
+               "write a VTK file every N converged steps; 0: the final state only"),
+      K::whole("output.tube_sides", &OutputSettings::tube_sides, ">= 3", ranges::at_least_three,
+               "facets around each tube in the VTK output"),
+      K::real("output.progress_seconds", &OutputSettings::progress_seconds, "s", ">= 0", ranges::non_negative,
+              "minimum interval between progress lines on stderr"),
+      K::flag("output.contact_csv", &OutputSettings::contact_csv,
+              "with contact: also write contact/contact_NNNNNN.csv (every contact element) at "
+              "every VTK output step"),
+      K::whole("output.checkpoint_every", &OutputSettings::checkpoint_every, ">= 0", ranges::non_negative,
+               "also save the run's complete state every N converged steps, as "
+               "checkpoints/latest.nodus-state (the state at the end of every stage is always "
+               "saved; docs/output.md); 0: at stage ends only"),
+  };
+  return keys;
+}
 
 /// How Newton's tangent linearises the friction force (contact.friction_tangent; docs/contact.md). The force
 /// itself is the same either way.
@@ -144,8 +386,9 @@ enum class FrictionTangent {
   varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack)
 };
 
-/// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). Lengths <= 0 mean
-/// "auto": derived from the radii and element lengths when the simulation starts.
+/// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
+/// penalty) of 0 means "auto": derived from the radii and element lengths when the simulation starts (the
+/// library takes any value <= 0 so; validate() refuses negative ones, as the reader does).
 struct ContactSettings {
   bool enabled = false;      ///< true when the file has a contact section, unless contact.enabled: false
   bool self_contact = true;  ///< also between separate parts of one beam
@@ -169,7 +412,101 @@ struct ContactSettings {
   int max_detections = 4;          ///< loop 2: detections of contact elements per step, >= 1
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
   double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<ContactSettings>> keys();
 };
+
+inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
+  using K = Key<ContactSettings>;
+  static const K keys[] = {
+      K::flag("contact.enabled", &ContactSettings::enabled,
+              "false: contact is off although the section is present")
+          .shown_default("true"),
+      K::flag("contact.self_contact", &ContactSettings::self_contact,
+              "also detect contact between separate parts of one beam"),
+      K::doc("contact.beams", KeyType::list, "", "all beams", "of beam names, non-empty, each beam once",
+             "the beams that take part in contact"),
+      K::real("contact.proximity_distance", &ContactSettings::proximity_distance, "mm", "> 0 or auto",
+              ranges::positive,
+              "delta_prox: largest axis-to-axis distance of a proximity (candidate contact). "
+              "auto: 3 R, i.e. 1.5 times the contact distance 2 R")
+          .or_auto(),
+      K::real("contact.separation_distance", &ContactSettings::separation_distance, "mm",
+              "> 0 or auto, > proximity_distance", ranges::positive,
+              "delta_separ: smallest distance along one beam between two of its parts paired "
+              "for self contact. auto: 4 proximity_distance")
+          .or_auto(),
+      K::real("contact.test_point_spacing", &ContactSettings::test_point_spacing, "mm", "> 0 or auto",
+              ranges::positive,
+              "h_dist: spacing of the test points along each beam. auto: "
+              "sqrt(proximity_distance^2 - (2 R)^2), at least proximity_distance / 2")
+          .or_auto(),
+      K::real("contact.matching_length", &ContactSettings::matching_length, "mm",
+              "> 0 or auto, >= test_point_spacing", ranges::positive,
+              "l_p: length of an elementary matching interval. auto: 2 test_point_spacing")
+          .or_auto(),
+      K::real("contact.element_spacing", &ContactSettings::element_spacing, "mm", "> 0 or auto",
+              ranges::positive,
+              "h_c: spacing of the contact elements along a proximity zone. auto: h / 2, h the "
+              "smaller element length of the zone's two beams")
+          .or_auto(),
+      K::flag("contact.forces", &ContactSettings::forces,
+              "apply contact forces (Durville 2012, Sect. 5); false: detect and write out only"),
+      K::real("contact.penalty", &ContactSettings::penalty, "N/mm", "> 0 or auto", ranges::positive,
+              "initial penalty coefficient k_c of every proximity zone (Eq. 53), then adjusted "
+              "per zone so that the largest penetration approaches max_penetration (Eq. 54). "
+              "auto: E R, with E the smallest Young's modulus and R the smallest radius of the "
+              "contact beams")
+          .or_auto(),
+      K::real("contact.max_penetration", &ContactSettings::max_penetration, "mm", "> 0 or auto",
+              ranges::positive,
+              "p_max, the penetration the per-zone penalty adjustment aims at (Eq. 54). auto: "
+              "0.02 R (R the smallest radius)")
+          .or_auto(),
+      K::real("contact.regularization", &ContactSettings::regularization, "mm", "> 0 or auto",
+              ranges::positive,
+              "p_reg, the depth of the quadratic start of the penalty law (Eq. 53). auto: "
+              "max_penetration / 10")
+          .or_auto(),
+      K::real("contact.friction", &ContactSettings::friction, "", ">= 0", ranges::non_negative,
+              "Coulomb friction coefficient mu (Eq. 55-64); 0: frictionless"),
+      K::real("contact.max_reversible_slip", &ContactSettings::max_reversible_slip, "mm", "> 0 or auto",
+              ranges::positive,
+              "g_rev_max, the tangential displacement taken reversibly before sliding "
+              "(regularised Coulomb law). auto: max_penetration / 2")
+          .or_auto(),
+      K::choice(
+          "contact.friction_tangent", "frozen | varying",
+          [](const ContactSettings& c) { return static_cast<int>(c.friction_tangent); },
+          [](ContactSettings& c, int i) { c.friction_tangent = static_cast<FrictionTangent>(i); },
+          "how Newton's tangent linearises the friction force (the force is the same). "
+          "frozen: R_N held fixed, a symmetric tangent. varying: the exact derivative with "
+          "R_N varying, not symmetric: needs solver.linear_solver: umfpack "
+          "(docs/contact.md)"),
+      K::choice(
+          "contact.particles", "fixed | facing",
+          [](const ContactSettings& c) { return c.facing_particles ? 1 : 0; },
+          [](ContactSettings& c, int i) { c.facing_particles = i == 1; },
+          "where the contact forces act during Newton. fixed: the paper's particles, "
+          "material points of the section borders placed at detection (Eq. 37-40). facing: "
+          "at each evaluation, the points of the borders that face each other along the "
+          "normal (no spurious torsional stiffness from the lever arm of a turned section; "
+          "for tightened knots)"),
+      K::whole("contact.max_detections", &ContactSettings::max_detections, ">= 1", ranges::at_least_one,
+               "loop 2 of the global algorithm (Sect. 6): at most this many detections of the "
+               "contact elements per load step"),
+      K::whole("contact.max_normal_iterations", &ContactSettings::max_normal_iterations, ">= 1",
+               ranges::at_least_one,
+               "loop 3: at most this many updates of the normal directions and penalties per "
+               "detection"),
+      K::real("contact.normal_tolerance", &ContactSettings::normal_tolerance, "rad", "> 0", ranges::positive,
+              "loop 3 stops when an update turns no normal by more than this and leaves every "
+              "zone's penalty as it is: its largest penetration in [max_penetration / 2, "
+              "max_penetration], or below max_penetration / 1000 (a zone that only touches)"),
+  };
+  return keys;
+}
 
 /// A run that continues from the state at the end of one stage of Scenario::stages (key `branches`).
 struct BranchSpec {
@@ -178,7 +515,30 @@ struct BranchSpec {
   std::optional<double> friction;  ///< overrides contact.friction for the branch's stages [-], >= 0
   std::vector<StageSpec> stages;   ///< run after stage `from`, names unique within the branch
   int line = 0;                    ///< line of the branch in the file (for messages)
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<BranchSpec>> keys();
 };
+
+inline std::span<const Key<BranchSpec>> BranchSpec::keys() {
+  using K = Key<BranchSpec>;
+  static const K keys[] = {
+      K::doc("branches[].name", KeyType::string, "", "required",
+             "unique among branches, of letters, digits, _ . -",
+             "name of the branch and of its output folder DIR/branches/NAME"),
+      K::doc("branches[].from", KeyType::string, "", "required", "naming a stage of stages",
+             "the branch starts from the state at the end of this stage (load time and step "
+             "numbers go on from there)"),
+      K::doc("branches[].contact", KeyType::map, "", "-", "with friction only; needs a contact section",
+             "overrides of the contact settings for the branch's stages"),
+      K::doc("branches[].contact.friction", KeyType::number, "", "unchanged", ">= 0",
+             "Coulomb friction coefficient mu of the branch's stages"),
+      K::doc("branches[].stages", KeyType::list, "", "required", "non-empty, each item as in stages[]",
+             "the branch's loading program, run in order after the from stage; stage names "
+             "unique within the branch"),
+  };
+  return keys;
+}
 
 /// What makes the scenario of a branch (branch_scenario) a continuation of its parent run.
 struct BranchOrigin {
@@ -199,7 +559,40 @@ struct Scenario {
   std::vector<BranchSpec> branches;
   /// Set on the scenario of a branch (branch_scenario), empty for a scenario read from a file.
   std::optional<BranchOrigin> origin;
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<Scenario>> keys();
 };
+
+inline std::span<const Key<Scenario>> Scenario::keys() {
+  using K = Key<Scenario>;
+  static const K keys[] = {
+      K::doc("units", KeyType::map, "", "-", "",
+             "the unit system; if present, each of its keys must have exactly the value shown"),
+      K::doc("units.length", KeyType::choice, "", "mm", "mm", "length unit"),
+      K::doc("units.force", KeyType::choice, "", "N", "N", "force unit"),
+      K::doc("units.stress", KeyType::choice, "", "MPa", "MPa", "stress unit"),
+      K::doc("units.time", KeyType::choice, "", "s", "s", "time unit"),
+      K::doc("materials", KeyType::list, "", "required", "non-empty", "the isotropic elastic materials"),
+      K::doc("beams", KeyType::list, "", "required", "non-empty",
+             "the beams, each straight in its reference configuration"),
+      K::doc("conditions", KeyType::list, "", "[]", "",
+             "named boundary conditions, each on one cross-section"),
+      K::doc("stages", KeyType::list, "", "required", "non-empty", "the loading program, run in order"),
+      K::doc("solver", KeyType::map, "", "{}", "", "Newton solver settings"),
+      K::doc("output", KeyType::map, "", "{}", "", "output settings"),
+      K::doc("contact", KeyType::map, "", "-", "",
+             "contact detection and contact forces between the beams (docs/contact.md); "
+             "absent: no contact, present (even empty): on. The detection lengths are the "
+             "paper's delta_prox, delta_separ, h_dist, l_p, h_c (Durville 2012, Eq. 24-48); "
+             "auto ones are derived when the run starts, with R the largest radius of the "
+             "contact beams"),
+      K::doc("branches", KeyType::list, "", "[]", "-",
+             "runs that each continue from the state at the end of one stage of stages, after "
+             "all of stages; results in DIR/branches/NAME"),
+  };
+  return keys;
+}
 
 /// Reads and validates a scenario file. Throws ScenarioError with a one-line message on bad input.
 Scenario read_scenario(const std::string& path);

@@ -25,6 +25,19 @@ constexpr int kMaxElements = 100'000'000;
 
 constexpr std::string_view kDofNames[] = {"x", "y", "z", "g1x", "g1y", "g1z", "g2x", "g2y", "g2z"};
 
+// What the messages of cross-field checks expect, shared by the readers and validate().
+constexpr std::string_view kMatchingLengthExpected =
+    ">= test_point_spacing (successive matching intervals must overlap)";
+constexpr std::string_view kSeparationDistanceExpected =
+    "> proximity_distance (neighbouring parts of a beam would be paired)";
+constexpr std::string_view kStabilizationEndExpected =
+    "0 when stabilization is 0 (the decay is geometric from stabilization)";
+// CHOLMOD reads one triangle of the tangent: the varying friction tangent, not symmetric, needs LU. Asked
+// for explicitly rather than switched on behind the user's back, so that the file says which solver runs.
+constexpr std::string_view kFrictionTangentExpected =
+    "frozen with solver.linear_solver: cholmod (the varying tangent is not symmetric and needs LU: "
+    "set solver.linear_solver: umfpack)";
+
 /// The word of the file for a condition type: clamp, motion, rigid, load.
 std::string_view type_name(ConditionType type);
 

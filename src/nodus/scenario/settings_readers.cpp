@@ -1,5 +1,7 @@
 #include "nodus/scenario/section_readers.hpp"
 
+#include "nodus/scenario/declared_keys.hpp"
+
 #include <fmt/format.h>
 
 namespace nodus::scenario {
@@ -16,30 +18,7 @@ SolverSettings read_solver(const Reader& reader, const MapView& top) {
   const auto field = top.get("solver");
   if (!field) return solver;
   const MapView map(reader, *field);
-  if (const auto value = map.get("linear_solver")) {
-    solver.linear_solver =
-        reader.choice(*value) == "umfpack" ? LinearSolverKind::umfpack : LinearSolverKind::cholmod;
-  }
-  const auto at_least = [](int minimum) { return [minimum](int v) { return v >= minimum; }; };
-  const auto positive = [](double v) { return v > 0.0; };
-  const auto non_negative = [](double v) { return v >= 0.0; };
-  if (const auto value = map.get("max_newton_iterations")) {
-    solver.max_newton_iterations = reader.integer(*value, at_least(1));
-  }
-  if (const auto value = map.get("residual_tolerance"))
-    solver.residual_tolerance = reader.number(*value, positive);
-  if (const auto value = map.get("increment_tolerance")) {
-    solver.increment_tolerance = reader.number(*value, positive);
-  }
-  if (const auto value = map.get("max_cutbacks")) solver.max_cutbacks = reader.integer(*value, at_least(0));
-  if (const auto value = map.get("easy_iterations"))
-    solver.easy_iterations = reader.integer(*value, at_least(1));
-  if (const auto value = map.get("line_search")) solver.line_search = reader.boolean(*value);
-  if (const auto value = map.get("gauss_points")) {
-    solver.gauss_points = reader.integer(*value, [](int v) { return v >= 1 && v <= 5; });
-  }
-  if (const auto value = map.get("fold_stiffness"))
-    solver.fold_stiffness = reader.number(*value, non_negative);
+  read_keys(reader, map, SolverSettings::keys(), solver);
   return solver;
 }
 
@@ -48,17 +27,7 @@ OutputSettings read_output(const Reader& reader, const MapView& top) {
   const auto field = top.get("output");
   if (!field) return output;
   const MapView map(reader, *field);
-  if (const auto value = map.get("vtk_every"))
-    output.vtk_every = reader.integer(*value, [](int v) { return v >= 0; });
-  if (const auto value = map.get("tube_sides")) {
-    output.tube_sides = reader.integer(*value, [](int v) { return v >= 3; });
-  }
-  if (const auto value = map.get("progress_seconds")) {
-    output.progress_seconds = reader.number(*value, [](double v) { return v >= 0.0; });
-  }
-  if (const auto value = map.get("contact_csv")) output.contact_csv = reader.boolean(*value);
-  if (const auto value = map.get("checkpoint_every"))
-    output.checkpoint_every = reader.integer(*value, [](int v) { return v >= 0; });
+  read_keys(reader, map, OutputSettings::keys(), output);
   return output;
 }
 
@@ -68,8 +37,7 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
   if (!field) return contact;
   const MapView map(reader, *field);
   contact.enabled = true;
-  if (const auto value = map.get("enabled")) contact.enabled = reader.boolean(*value);
-  if (const auto value = map.get("self_contact")) contact.self_contact = reader.boolean(*value);
+  read_keys(reader, map, ContactSettings::keys(), contact);
   if (const auto value = map.get("beams")) {
     for (const Field& item : reader.list(*value, true)) {
       const auto index = beam_names.find(item.node.IsScalar() ? item.node.Scalar() : std::string());
@@ -81,49 +49,14 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
     }
   }
 
-  // A length (or the penalty) is > 0, or auto (absent, or the word auto), which leaves it at 0. Returns the
-  // field of an explicit value.
-  const auto length = [&](std::string_view key, double& out) -> std::optional<Field> {
-    const auto value = map.get(key);
-    if (!value || (is_plain_scalar(value->node) && value->node.Scalar() == "auto")) return std::nullopt;
-    out = reader.number(*value, [](double v) { return v > 0.0; });
-    return value;
-  };
-  const auto proximity = length("proximity_distance", contact.proximity_distance);
-  const auto separation = length("separation_distance", contact.separation_distance);
-  const auto spacing = length("test_point_spacing", contact.test_point_spacing);
-  const auto matching = length("matching_length", contact.matching_length);
-  length("element_spacing", contact.element_spacing);
-  if (spacing && matching && contact.matching_length < contact.test_point_spacing) {
-    reader.fail(*matching, ">= test_point_spacing (successive matching intervals must overlap)");
+  // Explicit lengths (> 0; 0 is auto) that must be ordered.
+  const auto spacing = contact.test_point_spacing;
+  if (spacing > 0.0 && contact.matching_length > 0.0 && contact.matching_length < spacing) {
+    reader.fail(*map.get("matching_length"), kMatchingLengthExpected);
   }
-  if (proximity && separation && contact.separation_distance <= contact.proximity_distance) {
-    reader.fail(*separation, "> proximity_distance (neighbouring parts of a beam would be paired)");
-  }
-
-  // Contact mechanics (Sect. 5-6).
-  if (const auto value = map.get("forces")) contact.forces = reader.boolean(*value);
-  length("penalty", contact.penalty);
-  length("max_penetration", contact.max_penetration);
-  length("regularization", contact.regularization);
-  if (const auto value = map.get("friction")) {
-    contact.friction = reader.number(*value, [](double v) { return v >= 0.0; });
-  }
-  length("max_reversible_slip", contact.max_reversible_slip);
-  if (const auto value = map.get("friction_tangent")) {
-    contact.friction_tangent =
-        reader.choice(*value) == "varying" ? FrictionTangent::varying : FrictionTangent::frozen;
-  }
-  if (const auto value = map.get("particles")) contact.facing_particles = reader.choice(*value) == "facing";
-  const auto at_least_one = [](int v) { return v >= 1; };
-  if (const auto value = map.get("max_detections")) {
-    contact.max_detections = reader.integer(*value, at_least_one);
-  }
-  if (const auto value = map.get("max_normal_iterations")) {
-    contact.max_normal_iterations = reader.integer(*value, at_least_one);
-  }
-  if (const auto value = map.get("normal_tolerance")) {
-    contact.normal_tolerance = reader.number(*value, [](double v) { return v > 0.0; });
+  if (contact.proximity_distance > 0.0 && contact.separation_distance > 0.0 &&
+      contact.separation_distance <= contact.proximity_distance) {
+    reader.fail(*map.get("separation_distance"), kSeparationDistanceExpected);
   }
   return contact;
 }
