@@ -20,13 +20,20 @@ namespace nodus::scenario {
 /// A number as the key table shows a default: shortest round trip, exponent without padding ("1e-8").
 std::string table_number(double value);
 
-/// Whether `value` is admissible for the number or integer `key`: finite and satisfying its range; for an
-/// auto key, 0 (auto) too. The reader reads the word auto as 0 and an explicit number must satisfy the range.
+/// Whether `value` satisfies the range of the number or integer `key` (the predicate of its declaration).
+template <class Owner>
+bool in_range(const Key<Owner>& key, double value) {
+  return key.ok == nullptr || key.ok(value);
+}
+
+/// Whether `value` is admissible for the number or integer `key` in a Scenario: finite and in range; for an
+/// auto key, 0 (auto) too. The one check of a value that the reader and validate() share (the reader reads
+/// the word auto as 0, and an explicit number must be in range).
 template <class Owner>
 bool admissible(const Key<Owner>& key, double value) {
   if (!std::isfinite(value)) return false;
   if (key.zero_is_auto && value == 0.0) return true;
-  return key.ok == nullptr || key.ok(value);
+  return in_range(key, value);
 }
 
 /// The value of scalar `key` in `owner`, as the echo prints it ("auto" for an auto key at 0); with
@@ -83,7 +90,7 @@ void read_key(const Reader& reader, const Field& field, const Key<Owner>& key, O
       return;
     }
     // An explicit value of an auto key must satisfy the range: 0 is written auto.
-    owner.*key.number = reader.number(field, [&key](double v) { return key.ok == nullptr || key.ok(v); });
+    owner.*key.number = reader.number(field, [&key](double v) { return in_range(key, v); });
   } else if (key.integer) {
     owner.*key.integer = reader.integer(field, [&key](int v) { return admissible(key, v); });
   } else if (key.boolean) {

@@ -56,6 +56,9 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       scenario.conditions[c].moment_axis = moment_axes.axis(static_cast<int>(c));
     }
   }
+  // Everything read has been checked with its line; this checks the same again, as for a scenario built in
+  // code, so that validate() accepts whatever the reader accepts.
+  validate(scenario);
   return scenario;
 }
 

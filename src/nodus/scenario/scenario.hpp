@@ -612,6 +612,8 @@ std::string scenario_keys_markdown();
 
 }  // namespace nodus::scenario
 
-// The echo and the fingerprint of a scenario: part of this header's API, declared in their own files.
+// The echo, the fingerprint and the validation of a scenario: part of this header's API, declared in their
+// own files.
 #include "nodus/scenario/describe.hpp"     // IWYU pragma: export
 #include "nodus/scenario/fingerprint.hpp"  // IWYU pragma: export
+#include "nodus/scenario/validate.hpp"     // IWYU pragma: export

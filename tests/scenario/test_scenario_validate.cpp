@@ -1,0 +1,295 @@
+// Tests of validate(): a scenario built or changed in code gets the reader's message minus the line, for
+// every declared number and integer key (generated from the declarations, key.hpp) and for checks across
+// keys; and every declared key is in `nodus keys` and in docs/scenario.md.
+
+#include <array>
+#include <cstdio>
+#include <fstream>
+#include <functional>
+#include <memory>
+#include <regex>
+#include <span>
+#include <sstream>
+#include <string>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "nodus/scenario/keys.hpp"
+#include "nodus/scenario/scenario.hpp"
+
+namespace nodus::scenario {
+namespace {
+
+// Every number and integer key of these sections is given, valid, on a line of its own.
+constexpr const char* kBase = R"(materials:
+  - name: steel
+    young_modulus: 200000
+    poisson_ratio: 0.3
+beams:
+  - name: wire
+    material: steel
+    radius: 0.1
+    length: 10
+    elements: 4
+    bending_factor: 1
+conditions:
+  - {name: fix, type: clamp, beam: wire, at: start}
+  - {name: pull, type: motion, beam: wire, at: end}
+stages:
+  - name: load
+    steps: 2
+    duration: 1
+    stabilization: 0.1
+    stabilization_end: 0.01
+    motions:
+      pull:
+        keyframes:
+          - at: 1
+            translation: [1, 0, 0]
+solver:
+  linear_solver: umfpack
+  max_newton_iterations: 25
+  residual_tolerance: 1e-8
+  increment_tolerance: 1e-6
+  max_cutbacks: 12
+  easy_iterations: 4
+  gauss_points: 2
+  fold_stiffness: 0
+output:
+  vtk_every: 1
+  tube_sides: 12
+  progress_seconds: 1
+  checkpoint_every: 0
+contact:
+  proximity_distance: 0.3
+  separation_distance: 1.2
+  test_point_spacing: 0.2
+  matching_length: 0.4
+  element_spacing: 0.1
+  penalty: 100
+  max_penetration: 0.01
+  regularization: 0.001
+  friction: 0.1
+  max_reversible_slip: 0.005
+  max_detections: 4
+  max_normal_iterations: 6
+  normal_tolerance: 0.001
+)";
+
+/// kBase with the value of the first line " LEAF: ..." after the line starting `section` replaced.
+std::string with_value(const std::string& section, const std::string& leaf, const std::string& value) {
+  std::string text = kBase;
+  const std::size_t start = text.find(section);
+  EXPECT_NE(start, std::string::npos) << section;
+  const std::size_t at = text.find(" " + leaf + ": ", start);
+  EXPECT_NE(at, std::string::npos) << leaf;
+  const std::size_t begin = at + leaf.size() + 3;
+  return text.replace(begin, text.find('\n', begin) - begin, value);
+}
+
+/// The reader's message for `yaml` with its line left out: "t.yaml:12: KEY: ..." -> "t.yaml: KEY: ...".
+std::string reader_message(const std::string& yaml) {
+  try {
+    parse_scenario(yaml, "t.yaml");
+  } catch (const ScenarioError& error) {
+    return std::regex_replace(std::string(error.what()), std::regex("^t\\.yaml:[0-9]+: "), "t.yaml: ");
+  }
+  return "(accepted)";
+}
+
+std::string validate_message(const Scenario& scenario) {
+  try {
+    validate(scenario);
+  } catch (const ScenarioError& error) {
+    return error.what();
+  }
+  return "(accepted)";
+}
+
+Scenario base() {
+  return parse_scenario(kBase, "t.yaml");
+}
+
+/// A value outside the range of `key` (and not auto): the first of a few candidates that fails it.
+template <class Owner>
+std::optional<double> bad_value(const Key<Owner>& key) {
+  for (double v : {-1.0, 0.0, 0.5, 6.0}) {
+    if (key.ok != nullptr && !key.ok(v) && !(key.zero_is_auto && v == 0.0)) return v;
+  }
+  return std::nullopt;
+}
+
+/// For each number and integer key of `Owner`: the file with the bad value and the scenario with the same
+/// value set in code give the same message, less the line.
+template <class Owner>
+int check_keys(const std::string& section, const std::function<Owner&(Scenario&)>& owner_of) {
+  int checked = 0;
+  for (const Key<Owner>& key : Owner::keys()) {
+    if (!key.number && !key.integer) continue;
+    const auto value = bad_value(key);
+    if (!value) {
+      ADD_FAILURE() << key.path << ": no out-of-range candidate";
+      continue;
+    }
+    const std::string text = fmt::format("{}", *value);
+    const std::string leaf(key.path.substr(key.path.rfind('.') + 1));
+    const std::string from_file = reader_message(with_value(section, leaf, text));
+    Scenario scenario = base();
+    Owner& owner = owner_of(scenario);
+    if (key.number) owner.*key.number = *value;
+    if (key.integer) owner.*key.integer = static_cast<int>(*value);
+    EXPECT_EQ(validate_message(scenario), from_file) << key.path;
+    EXPECT_NE(from_file, "(accepted)") << key.path;
+    ++checked;
+  }
+  return checked;
+}
+
+TEST(ScenarioValidate, BaseIsValid) {
+  EXPECT_NO_THROW(validate(base()));
+}
+
+TEST(ScenarioValidate, EveryNumberKeyOutOfRangeGivesTheReadersMessage) {
+  int checked = 0;
+  checked += check_keys<Material>("materials:", [](Scenario& s) -> Material& { return s.materials[0]; });
+  checked += check_keys<BeamSpec>("beams:", [](Scenario& s) -> BeamSpec& { return s.beams[0]; });
+  checked += check_keys<StageSpec>("stages:", [](Scenario& s) -> StageSpec& { return s.stages[0]; });
+  checked += check_keys<Keyframe>(
+      "keyframes:", [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
+  checked += check_keys<SolverSettings>("solver:", [](Scenario& s) -> SolverSettings& { return s.solver; });
+  checked += check_keys<OutputSettings>("output:", [](Scenario& s) -> OutputSettings& { return s.output; });
+  checked +=
+      check_keys<ContactSettings>("contact:", [](Scenario& s) -> ContactSettings& { return s.contact; });
+  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 7 + 4 + 13.
+  EXPECT_EQ(checked, 35);
+}
+
+TEST(ScenarioValidate, ChecksAcrossKeysGiveTheReadersMessage) {
+  {  // the varying friction tangent needs LU
+    Scenario s = base();
+    s.solver.linear_solver = LinearSolverKind::cholmod;
+    s.contact.friction_tangent = FrictionTangent::varying;
+    std::string yaml = with_value("solver:", "linear_solver", "cholmod");
+    yaml += "  friction_tangent: varying\n";
+    EXPECT_EQ(validate_message(s), reader_message(yaml));
+    EXPECT_NE(validate_message(s).find("t.yaml: contact.friction_tangent: expected frozen"),
+              std::string::npos);
+  }
+  {  // matching intervals must overlap
+    Scenario s = base();
+    s.contact.matching_length = 0.1;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("contact:", "matching_length", "0.1")));
+  }
+  {
+    Scenario s = base();
+    s.contact.separation_distance = 0.3;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("contact:", "separation_distance", "0.3")));
+  }
+  {  // a drag that ends without one at the start
+    Scenario s = base();
+    s.stages[0].stabilization = 0.0;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("stages:", "stabilization", "0")));
+  }
+  {  // the node of a condition within the beam
+    Scenario s = base();
+    s.conditions[1].node = 9;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("pull, type", "at", "9}")));
+  }
+  {  // beam elements above the limit
+    Scenario s = base();
+    s.beams[0].elements = 100'000'001;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("beams:", "elements", "100000001")));
+  }
+  {  // the last keyframe at the stage end
+    Scenario s = base();
+    s.stages[0].motions[0].keyframes[0].at = 0.5;
+    EXPECT_EQ(validate_message(s), reader_message(with_value("keyframes:", "at", "0.5")));
+  }
+}
+
+TEST(ScenarioValidate, ReferencesAndNamesInCode) {
+  {
+    Scenario s = base();
+    s.beams[0].material = 3;
+    EXPECT_EQ(validate_message(s),
+              "t.yaml: beams[0].material: expected an index into materials (0 .. 0), got 3");
+  }
+  {
+    Scenario s = base();
+    s.conditions[1].name = "fix";
+    EXPECT_EQ(validate_message(s),
+              "t.yaml: conditions[1].name: expected a name unique among conditions (already used by "
+              "conditions[0].name), got fix");
+  }
+  {
+    Scenario s = base();
+    s.stages[0].motions[0].condition = 0;  // a clamp
+    EXPECT_EQ(
+        validate_message(s),
+        "t.yaml: stages[0].motions[0].condition: expected a motion or rigid condition, got fix (a clamp "
+        "condition)");
+  }
+  {
+    Scenario s = base();
+    s.contact.beams = {0, 0};
+    EXPECT_EQ(validate_message(s),
+              "t.yaml: contact.beams[1]: expected each beam once in contact.beams, got wire");
+  }
+  {
+    Scenario s = base();
+    s.beams[0].direction = Vec3(2, 0, 0);
+    EXPECT_NE(
+        validate_message(s).find("t.yaml: beams[0].direction: expected a list of 3 numbers of length 1"),
+        std::string::npos);
+  }
+}
+
+std::string read_file(const std::string& path) {
+  std::ifstream in(path);
+  EXPECT_TRUE(in.good()) << path;
+  std::ostringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
+
+/// Every key declared next to a struct field: the paths of all keys() lists.
+std::vector<std::string> declared_paths() {
+  std::vector<std::string> out;
+  const auto add = [&out](const auto& keys) {
+    for (const auto& key : keys) out.emplace_back(key.path);
+  };
+  add(Scenario::keys());
+  add(Material::keys());
+  add(BeamSpec::keys());
+  add(ConditionSpec::keys());
+  add(StageSpec::keys());
+  add(MotionTarget::keys());
+  add(Keyframe::keys());
+  add(LoadTarget::keys());
+  add(SolverSettings::keys());
+  add(OutputSettings::keys());
+  add(ContactSettings::keys());
+  add(BranchSpec::keys());
+  return out;
+}
+
+TEST(ScenarioValidate, EveryDeclaredKeyIsInNodusKeysAndTheDocs) {
+  const std::string docs = read_file(std::string(NODUS_SOURCE_DIR) + "/docs/scenario.md");
+  std::string keys;
+  {
+    std::unique_ptr<FILE, int (*)(FILE*)> pipe(popen(NODUS_BINARY " keys", "r"), pclose);
+    ASSERT_TRUE(pipe);
+    std::array<char, 4096> buffer{};
+    while (std::fgets(buffer.data(), buffer.size(), pipe.get())) keys += buffer.data();
+  }
+  const std::vector<std::string> paths = declared_paths();
+  EXPECT_EQ(paths.size(), scenario_keys().size());  // the table holds the declarations, nothing else
+  for (const std::string& path : paths) {
+    EXPECT_NE(keys.find("| `" + path + "` |"), std::string::npos) << path << " missing from nodus keys";
+    EXPECT_NE(docs.find("| `" + path + "` |"), std::string::npos) << path << " missing from docs/scenario.md";
+  }
+}
+
+}  // namespace
+}  // namespace nodus::scenario
