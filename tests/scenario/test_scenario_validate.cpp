@@ -1,9 +1,13 @@
 // Tests of validate(): a scenario built or changed in code gets the reader's message minus the line, for
 // every declared number and integer key (generated from the declarations, key.hpp) and for checks across
-// keys; and every declared key is in `nodus keys` and in docs/scenario.md.
+// keys; every declared key is in `nodus keys` and in docs/scenario.md; and the checkpoint fingerprint, a
+// canonical serialisation, changes with every value and is the same for a scenario read and one built in
+// code.
 
 #include <array>
+#include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <fstream>
 #include <functional>
 #include <memory>
@@ -289,6 +293,115 @@ TEST(ScenarioValidate, EveryDeclaredKeyIsInNodusKeysAndTheDocs) {
     EXPECT_NE(keys.find("| `" + path + "` |"), std::string::npos) << path << " missing from nodus keys";
     EXPECT_NE(docs.find("| `" + path + "` |"), std::string::npos) << path << " missing from docs/scenario.md";
   }
+}
+
+/// Each declared scalar key of `Owner` changed in code (number: 2 v + 1, integer: + 1, bool: flipped,
+/// choice: the next alternative) changes the fingerprint; returns the keys changed.
+template <class Owner>
+int check_fingerprint(const std::function<Owner&(Scenario&)>& owner_of) {
+  const Scenario original = base();
+  const std::string fingerprint = state_fingerprint_text(original, 1);
+  int checked = 0;
+  for (const Key<Owner>& key : Owner::keys()) {
+    if (!key.scalar()) continue;
+    Scenario changed = original;
+    Owner& owner = owner_of(changed);
+    if (key.number) owner.*key.number = 2.0 * (owner.*key.number) + 1.0;
+    if (key.integer) owner.*key.integer += 1;
+    if (key.boolean) owner.*key.boolean = !(owner.*key.boolean);
+    if (key.set_choice) key.set_choice(owner, key.get_choice(owner) == 0 ? 1 : 0);
+    EXPECT_NE(state_fingerprint_text(changed, 1), fingerprint) << key.path;
+    ++checked;
+  }
+  return checked;
+}
+
+TEST(ScenarioFingerprint, EveryValueChangesIt) {
+  int checked = 0;
+  checked += check_fingerprint<Material>([](Scenario& s) -> Material& { return s.materials[0]; });
+  checked += check_fingerprint<BeamSpec>([](Scenario& s) -> BeamSpec& { return s.beams[0]; });
+  checked += check_fingerprint<ConditionSpec>([](Scenario& s) -> ConditionSpec& { return s.conditions[0]; });
+  checked += check_fingerprint<StageSpec>([](Scenario& s) -> StageSpec& { return s.stages[0]; });
+  checked += check_fingerprint<Keyframe>(
+      [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
+  checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
+  checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
+  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 4, Keyframe 1, SolverSettings 9,
+  // ContactSettings 18.
+  EXPECT_EQ(checked, 40);
+
+  // Structural values, and a change in the last digit of a number.
+  const Scenario original = base();
+  const std::string fingerprint = state_fingerprint_text(original, 1);
+  const auto differs = [&](const std::function<void(Scenario&)>& change) {
+    Scenario changed = original;
+    change(changed);
+    return state_fingerprint_text(changed, 1) != fingerprint;
+  };
+  EXPECT_TRUE(differs([](Scenario& s) { s.beams[0].radius = std::nextafter(s.beams[0].radius, 1.0); }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.beams[0].start.z() = 1e-12; }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.beams[0].name = "rod"; }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.conditions[0].dofs[kG2z] = false; }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.conditions[0].node = 1; }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.stages[0].motions[0].keyframes[0].translation.x() = 2.0; }));
+  EXPECT_TRUE(differs([](Scenario& s) { s.contact.beams = {0}; }) == false);  // all beams, resolved
+  EXPECT_TRUE(differs([](Scenario& s) { s.stages[0].activate = {0}; }));
+  // What does not make the state does not change it.
+  EXPECT_FALSE(differs([](Scenario& s) { s.path = "elsewhere.yaml"; }));
+  EXPECT_FALSE(differs([](Scenario& s) { s.output.vtk_every = 7; }));
+  EXPECT_FALSE(differs([](Scenario& s) { s.conditions[0].line = 99; }));
+}
+
+TEST(ScenarioFingerprint, SameForTheFileAndTheScenarioBuiltInCode) {
+  Scenario made;
+  made.path = "in code";
+  made.materials.push_back({"steel", 200000.0, 0.3});
+  BeamSpec beam;
+  beam.name = "wire";
+  beam.radius = 0.1;
+  beam.length = 10.0;
+  beam.elements = 4;
+  made.beams.push_back(beam);
+  ConditionSpec fix;
+  fix.name = "fix";
+  fix.dofs.fill(true);
+  ConditionSpec pull = fix;
+  pull.name = "pull";
+  pull.type = ConditionType::motion;
+  pull.node = 8;
+  made.conditions = {fix, pull};
+  StageSpec stage;
+  stage.name = "load";
+  stage.steps = 2;
+  stage.stabilization = 0.1;
+  stage.stabilization_end = 0.01;
+  stage.motions.push_back({1, {Keyframe{1.0, Vec3(1, 0, 0), Vec3::Zero()}}});
+  made.stages.push_back(stage);
+  made.solver.linear_solver = LinearSolverKind::umfpack;
+  ContactSettings& contact = made.contact;
+  contact.enabled = true;
+  contact.proximity_distance = 0.3;
+  contact.separation_distance = 1.2;
+  contact.test_point_spacing = 0.2;
+  contact.matching_length = 0.4;
+  contact.element_spacing = 0.1;
+  contact.penalty = 100.0;
+  contact.max_penetration = 0.01;
+  contact.regularization = 0.001;
+  contact.friction = 0.1;
+  contact.max_reversible_slip = 0.005;
+  EXPECT_NO_THROW(validate(made));
+  EXPECT_EQ(state_fingerprint_text(made, 1), state_fingerprint_text(base(), 1));
+  // The canonical text holds no echo wording: one "PATH = VALUE" line per value.
+  const std::string text = state_fingerprint_text(made, 1);
+  EXPECT_EQ(text.find('#'), std::string::npos);
+  // Numbers in full precision: each reads back as the same double.
+  const std::string key = "\nsolver.residual_tolerance = ";
+  const std::size_t at = text.find(key);
+  ASSERT_NE(at, std::string::npos) << text;
+  EXPECT_EQ(std::strtod(text.c_str() + at + key.size(), nullptr), 1e-8);
+  const std::string radius = "\nbeams[0].radius = ";
+  EXPECT_EQ(std::strtod(text.c_str() + text.find(radius) + radius.size(), nullptr), 0.1);
 }
 
 }  // namespace

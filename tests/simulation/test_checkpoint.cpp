@@ -194,10 +194,10 @@ TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {
     EXPECT_EQ(error.find('\n'), std::string::npos) << error;
   }
   const std::string foreign = error_of(bytes, other_scenario);
-  EXPECT_NE(
-      foreign.find("'young_modulus: 4000  # MPa' in the checkpoint, 'young_modulus: 3000  # MPa' in the "
-                   "scenario"),
-      std::string::npos)
+  EXPECT_NE(foreign.find(
+                "'materials[0].young_modulus = 4000' in the checkpoint, 'materials[0].young_modulus = 3000' "
+                "in the scenario"),
+            std::string::npos)
       << foreign;
   // A scenario with fewer stages than the checkpoint has run.
   scenario::Scenario shorter = s;

@@ -4,11 +4,131 @@
 
 #include <fmt/format.h>
 
-#include "nodus/scenario/describe.hpp"
+#include <span>
+#include <string_view>
+#include <vector>
+
+#include "nodus/scenario/declared_keys.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/scenario/yaml_reader.hpp"
 
 namespace nodus::scenario {
+
+namespace {
+
+/// A number in full precision: equal texts, equal values.
+std::string exact(double value) {
+  return fmt::format("{:.17g}", value);
+}
+
+std::string exact(const Vec3& v) {
+  return fmt::format("[{}, {}, {}]", exact(v.x()), exact(v.y()), exact(v.z()));
+}
+
+std::string list(const std::vector<int>& items) {
+  return fmt::format("[{}]", fmt::join(items, ", "));
+}
+
+/// Canonical lines "PATH = VALUE", one per value, in declaration order.
+class Canonical {
+ public:
+  void line(std::string_view path, std::string_view value) {
+    text_ += path;
+    text_ += " = ";
+    text_ += value;
+    text_ += '\n';
+  }
+
+  /// Every declared scalar key of `owner`; `prefix` replaces the pattern prefix `pattern`.
+  template <class Owner>
+  void keys(const Owner& owner, std::string_view pattern, std::string_view prefix) {
+    for (const Key<Owner>& key : Owner::keys()) {
+      if (!key.scalar()) continue;
+      line(std::string(prefix) + std::string(key.path.substr(pattern.size())), value_text(key, owner, true));
+    }
+  }
+
+  void stages(const std::vector<StageSpec>& stages) {
+    for (std::size_t k = 0; k < stages.size(); ++k) {
+      const StageSpec& stage = stages[k];
+      const std::string at = fmt::format("stages[{}]", k);
+      line(at + ".name", stage.name);
+      keys(stage, "stages[]", at);
+      line(at + ".activate", list(stage.activate));
+      line(at + ".release", list(stage.release));
+      line(at + ".contact_off", list(stage.contact_off));
+      line(at + ".contact_on", list(stage.contact_on));
+      for (std::size_t m = 0; m < stage.motions.size(); ++m) {
+        const MotionTarget& motion = stage.motions[m];
+        const std::string target = fmt::format("{}.motions[{}]", at, m);
+        line(target + ".condition", std::to_string(motion.condition));
+        for (std::size_t f = 0; f < motion.keyframes.size(); ++f) {
+          const Keyframe& frame = motion.keyframes[f];
+          const std::string frame_at = fmt::format("{}.keyframes[{}]", target, f);
+          keys(frame, "stages[].motions.<condition>.keyframes[]", frame_at);
+          line(frame_at + ".translation", exact(frame.translation));
+          line(frame_at + ".rotation", exact(frame.rotation));
+        }
+      }
+      for (std::size_t l = 0; l < stage.loads.size(); ++l) {
+        const LoadTarget& load = stage.loads[l];
+        const std::string target = fmt::format("{}.loads[{}]", at, l);
+        line(target + ".condition", std::to_string(load.condition));
+        line(target + ".force", exact(load.force));
+        line(target + ".moment", exact(load.moment));
+      }
+    }
+  }
+
+  std::string text() && { return std::move(text_); }
+
+ private:
+  std::string text_;
+};
+
+/// The canonical serialisation of everything in `s` that makes a state: every value in full precision, in
+/// declaration order, names and indices included; not the path, the lines, the output settings, the branches.
+std::string canonical_text(const Scenario& s) {
+  Canonical out;
+  for (std::size_t m = 0; m < s.materials.size(); ++m) {
+    const std::string at = fmt::format("materials[{}]", m);
+    out.line(at + ".name", s.materials[m].name);
+    out.keys(s.materials[m], "materials[]", at);
+  }
+  for (std::size_t b = 0; b < s.beams.size(); ++b) {
+    const BeamSpec& beam = s.beams[b];
+    const std::string at = fmt::format("beams[{}]", b);
+    out.line(at + ".name", beam.name);
+    out.line(at + ".material", std::to_string(beam.material));
+    out.keys(beam, "beams[]", at);
+    out.line(at + ".start", exact(beam.start));
+    out.line(at + ".direction", exact(beam.direction));
+    out.line(at + ".director1", exact(beam.director1));
+  }
+  for (std::size_t c = 0; c < s.conditions.size(); ++c) {
+    const ConditionSpec& condition = s.conditions[c];
+    const std::string at = fmt::format("conditions[{}]", c);
+    out.line(at + ".name", condition.name);
+    out.keys(condition, "conditions[]", at);
+    out.line(at + ".beam", std::to_string(condition.beam));
+    out.line(at + ".node", std::to_string(condition.node));
+    std::string dofs;
+    for (bool d : condition.dofs) dofs += d ? '1' : '0';
+    out.line(at + ".dofs", dofs);
+    out.line(at + ".force", exact(condition.force));
+    out.line(at + ".moment", exact(condition.moment));
+    out.line(at + ".pivot", condition.pivot ? exact(*condition.pivot) : std::string("none"));
+    out.line(at + ".moment_axis",
+             condition.moment_axis ? exact(*condition.moment_axis) : std::string("none"));
+  }
+  out.stages(s.stages);
+  out.keys(s.solver, "solver", "solver");
+  out.keys(s.contact, "contact", "contact");
+  out.line("contact.beams", list(s.contact.beams));
+  return std::move(out).text();
+}
+
+}  // namespace
 
 std::string state_fingerprint_text(const Scenario& scenario, int stages_run) {
   Scenario made = scenario;
@@ -26,11 +146,11 @@ std::string state_fingerprint_text(const Scenario& scenario, int stages_run) {
     // Up to the end of stage `from` the state is the parent's, made with the parent's friction.
     made.contact.friction = scenario.origin->parent_friction;
     if (stages_run > scenario.origin->from + 1) {
-      suffix = fmt::format("# branch: from the end of stage {}, contact.friction {}\n", scenario.origin->from,
-                           format_number(scenario.contact.friction));
+      suffix = fmt::format("branch.from = {}\nbranch.contact.friction = {}\n", scenario.origin->from,
+                           exact(scenario.contact.friction));
     }
   }
-  return describe(made) + suffix;
+  return canonical_text(made) + suffix;
 }
 
 std::uint64_t fingerprint_hash(std::string_view text) {
