@@ -71,6 +71,22 @@ std::string describe_names(const Scenario& scenario, const std::vector<int>& con
   return out + "]";
 }
 
+/// The declared keys of one section or list item, "INDENT KEY: VALUE  # UNIT" each, in declaration order.
+/// `hook`, if given, sees every key first: it returns true where it printed the key itself (or left it out on
+/// purpose); structural keys are printed by the hook or not at all.
+template <class Owner>
+void describe_keys(std::string& out, std::span<const Key<Owner>> keys, const Owner& owner,
+                   std::string_view indent,
+                   const std::function<bool(const Key<std::type_identity_t<Owner>>&)>& hook = {}) {
+  for (const Key<Owner>& key : keys) {
+    if (hook && hook(key)) continue;
+    if (!key.scalar()) continue;
+    out += fmt::format("{}{}: {}", indent, leaf_name(key.path), value_text(key, owner));
+    if (!key.unit.empty()) out += fmt::format("  # {}", key.unit);
+    out += '\n';
+  }
+}
+
 /// The items of a list of stages, each line starting with `indent`.
 void describe_stages(std::string& out, const Scenario& scenario, const std::vector<StageSpec>& stages,
                      std::string_view indent) {
@@ -81,12 +97,13 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
   };
   for (const StageSpec& stage : stages) {
     line(fmt::format("  - name: {}", yaml_name(stage.name)));
-    line(fmt::format("    steps: {}", stage.steps));
-    line(fmt::format("    duration: {}  # s", format_number(stage.duration)));
-    if (stage.stabilization > 0.0) {
-      line(fmt::format("    stabilization: {}  # N s/mm^2", format_number(stage.stabilization)));
-      line(fmt::format("    stabilization_end: {}  # N s/mm^2", format_number(stage.stabilization_end)));
-    }
+    const std::string item_indent = std::string(indent) + "    ";
+    describe_keys(out, StageSpec::keys(), stage, item_indent, [&](const Key<StageSpec>& key) {
+      // The drag's keys only where there is a drag.
+      return key.number &&
+             (key.number == &StageSpec::stabilization || key.number == &StageSpec::stabilization_end) &&
+             stage.stabilization <= 0.0;
+    });
     line(fmt::format("    activate: {}", describe_names(scenario, stage.activate)));
     line(fmt::format("    release: {}", describe_names(scenario, stage.release)));
     const auto beam_list = [&](const std::vector<int>& beams) {
@@ -114,22 +131,6 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
   }
 }
 
-/// The declared scalar keys of one section, "  KEY: VALUE  # UNIT" each, in declaration order; a structural
-/// key is handed to `structural`, which prints it.
-template <class Owner>
-void describe_keys(std::string& out, std::span<const Key<Owner>> keys, const Owner& owner,
-                   const std::function<void(const Key<std::type_identity_t<Owner>>&)>& structural = {}) {
-  for (const Key<Owner>& key : keys) {
-    if (!key.scalar()) {
-      if (structural) structural(key);
-      continue;
-    }
-    out += fmt::format("  {}: {}", leaf_name(key.path), value_text(key, owner));
-    if (!key.unit.empty()) out += fmt::format("  # {}", key.unit);
-    out += '\n';
-  }
-}
-
 }  // namespace
 
 std::string describe(const Scenario& scenario) {
@@ -144,21 +145,23 @@ std::string describe(const Scenario& scenario) {
   line("materials:");
   for (const Material& material : scenario.materials) {
     line(fmt::format("  - name: {}", yaml_name(material.name)));
-    line(fmt::format("    young_modulus: {}  # MPa", format_number(material.young_modulus)));
-    line(fmt::format("    poisson_ratio: {}", format_number(material.poisson_ratio)));
+    describe_keys(out, Material::keys(), material, "    ");
   }
 
   line("beams:");
   for (const BeamSpec& beam : scenario.beams) {
     line(fmt::format("  - name: {}", yaml_name(beam.name)));
-    line(fmt::format("    material: {}", yaml_name(scenario.materials.at(beam.material).name)));
-    line(fmt::format("    radius: {}  # mm", format_number(beam.radius)));
-    line(fmt::format("    length: {}  # mm", format_number(beam.length)));
-    line(fmt::format("    elements: {}  # nodes 0..{}", beam.elements, 2 * beam.elements));
-    line(fmt::format("    start: {}  # mm", format_vec(beam.start)));
-    line(fmt::format("    direction: {}", format_vec(beam.direction)));
-    line(fmt::format("    director1: {}", format_vec(beam.director1)));
-    line(fmt::format("    bending_factor: {}", format_number(beam.bending_factor)));
+    describe_keys(out, BeamSpec::keys(), beam, "    ", [&](const Key<BeamSpec>& key) {
+      const std::string_view leaf = leaf_name(key.path);
+      if (leaf == "material")
+        line(fmt::format("    material: {}", yaml_name(scenario.materials.at(beam.material).name)));
+      if (leaf == "elements")
+        line(fmt::format("    elements: {}  # nodes 0..{}", beam.elements, 2 * beam.elements));
+      if (leaf == "start") line(fmt::format("    start: {}  # mm", format_vec(beam.start)));
+      if (leaf == "direction") line(fmt::format("    direction: {}", format_vec(beam.direction)));
+      if (leaf == "director1") line(fmt::format("    director1: {}", format_vec(beam.director1)));
+      return leaf != "radius" && leaf != "length" && leaf != "bending_factor";  // those: the generic line
+    });
   }
 
   if (scenario.conditions.empty()) {
@@ -169,36 +172,35 @@ std::string describe(const Scenario& scenario) {
   for (const ConditionSpec& condition : scenario.conditions) {
     const BeamSpec& beam = scenario.beams.at(condition.beam);
     line(fmt::format("  - name: {}  # line {}", yaml_name(condition.name), condition.line));
-    line(fmt::format("    type: {}", type_name(condition.type)));
-    line(fmt::format("    beam: {}", yaml_name(beam.name)));
-    if (condition.pivot) line(fmt::format("    pivot: {}  # mm", format_vec(*condition.pivot)));
-    if (condition.type == ConditionType::rigid) {
-      line(fmt::format("    active: {}", condition.initially_active ? "true" : "false"));
-      continue;
-    }
-    const std::string at = condition.node == 0                   ? std::string("start")
-                           : condition.node == 2 * beam.elements ? std::string("end")
-                                                                 : std::to_string(condition.node);
-    line(fmt::format("    at: {}  # node {}", at, condition.node));
-    if (condition.type == ConditionType::load) {
-      line(fmt::format("    force: {}  # N", format_vec(condition.force)));
-      line(fmt::format("    moment: {}  # N mm", format_vec(condition.moment)));
-    } else {
-      line(fmt::format("    dofs: {}", describe_dofs(condition.dofs)));
-    }
-    line(fmt::format("    active: {}", condition.initially_active ? "true" : "false"));
+    const bool rigid = condition.type == ConditionType::rigid, load = condition.type == ConditionType::load;
+    describe_keys(out, ConditionSpec::keys(), condition, "    ", [&](const Key<ConditionSpec>& key) {
+      const std::string_view leaf = leaf_name(key.path);
+      if (leaf == "beam") line(fmt::format("    beam: {}", yaml_name(beam.name)));
+      if (leaf == "pivot" && condition.pivot)
+        line(fmt::format("    pivot: {}  # mm", format_vec(*condition.pivot)));
+      if (leaf == "at" && !rigid) {
+        const std::string at = condition.node == 0                   ? std::string("start")
+                               : condition.node == 2 * beam.elements ? std::string("end")
+                                                                     : std::to_string(condition.node);
+        line(fmt::format("    at: {}  # node {}", at, condition.node));
+      }
+      if (leaf == "dofs" && !rigid && !load) line(fmt::format("    dofs: {}", describe_dofs(condition.dofs)));
+      if (leaf == "force" && load) line(fmt::format("    force: {}  # N", format_vec(condition.force)));
+      if (leaf == "moment" && load) line(fmt::format("    moment: {}  # N mm", format_vec(condition.moment)));
+      return !key.scalar();  // type and active: the generic line
+    });
   }
 
   line("stages:");
   describe_stages(out, scenario, scenario.stages, "");
 
   line("solver:");
-  describe_keys(out, SolverSettings::keys(), scenario.solver);
+  describe_keys(out, SolverSettings::keys(), scenario.solver, "  ");
   line("output:");
-  describe_keys(out, OutputSettings::keys(), scenario.output);
+  describe_keys(out, OutputSettings::keys(), scenario.output, "  ");
   line("contact:");
-  describe_keys(out, ContactSettings::keys(), scenario.contact, [&](const Key<ContactSettings>& key) {
-    if (key.path != "contact.beams") return;
+  describe_keys(out, ContactSettings::keys(), scenario.contact, "  ", [&](const Key<ContactSettings>& key) {
+    if (key.path != "contact.beams") return false;
     const ContactSettings& contact = scenario.contact;
     std::string beams = "[";
     if (contact.beams.empty()) {
@@ -212,6 +214,7 @@ std::string describe(const Scenario& scenario) {
       }
       line(fmt::format("  beams: {}]", beams));
     }
+    return true;
   });
 
   if (!scenario.branches.empty()) {
