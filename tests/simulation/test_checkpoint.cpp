@@ -156,7 +156,9 @@ TEST(Checkpoint, EncodingRoundTrips) {
   sim.run({}, {4});
   const std::string bytes = nodus::persistence::encode_checkpoint(s, sim.snapshot());
   EXPECT_EQ(bytes.substr(0, 12), "NODUS-STATE\n");
-  EXPECT_EQ(nodus::persistence::encode_checkpoint(s, nodus::persistence::decode_checkpoint(bytes, s, "memory")), bytes);
+  EXPECT_EQ(
+      nodus::persistence::encode_checkpoint(s, nodus::persistence::decode_checkpoint(bytes, s, "memory")),
+      bytes);
 }
 
 TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {

@@ -559,9 +559,7 @@ Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& sta
     throw std::invalid_argument("beam_centreline: state size differs from the model's number of unknowns");
   if (segments_per_element < 1) throw std::invalid_argument("beam_centreline: segments_per_element < 1");
   const beam::Beam& b = model.beam(beam);
-  const auto node = [&](int i) -> Eigen::Vector3d {
-    return state.segment<3>(model.node_dof(b.node(i)));
-  };
+  const auto node = [&](int i) -> Eigen::Vector3d { return state.segment<3>(model.node_dof(b.node(i))); };
   Centreline out;
   out.points.push_back(node(0));
   out.arc_length.push_back(b.abscissa(0));

@@ -233,7 +233,8 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
     const int v = beam::kNodeDofs * item.nodes.front() + 3 + 3 * item.director;
-    Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs> k = Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs>::Zero();
+    Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs> k =
+        Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs>::Zero();
     k.block<3, 3>(3 + 3 * item.director, 3 + 3 * item.director) = -m * item.angle->hessian(x.segment<3>(v));
     const int nodes[1] = {item.nodes.front()};
     assembler.add(nodes, k);

@@ -6,10 +6,10 @@
 #include <system_error>
 #include <vector>
 
-#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/contact_table.hpp"
 #include "nodus/output/final_nodes_table.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 
 namespace nodus::output {
 

@@ -312,8 +312,8 @@ std::string first_difference(const std::string& here, const std::string& there) 
         s.erase(0, s.find_first_not_of(' '));
         return s.size() > 70 ? s.substr(0, 67) + "..." : s;
       };
-      return fmt::format("line {} of the fingerprint is '{}' in the checkpoint, '{}' in the scenario",
-                         line, trim(line_b), trim(line_a));
+      return fmt::format("line {} of the fingerprint is '{}' in the checkpoint, '{}' in the scenario", line,
+                         trim(line_b), trim(line_a));
     }
   }
 }

@@ -45,7 +45,7 @@ fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& 
                                  const scenario::BranchSpec& branch) {
   return out / "checkpoints" /
          persistence::checkpoint_file_name(branch.from,
-                                      scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
+                                           scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
 }
 
 void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim) {

@@ -10,8 +10,8 @@
 #include <optional>
 #include <vector>
 
-#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/summary_writer.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/run.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"

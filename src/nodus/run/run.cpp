@@ -9,9 +9,9 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
-#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/branches.hpp"
 #include "nodus/run/run_outputs.hpp"
 #include "nodus/simulation/simulation.hpp"

@@ -7,7 +7,6 @@
 #include <string>
 #include <vector>
 
-#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/progress_reporter.hpp"
@@ -15,6 +14,7 @@
 #include "nodus/output/steps_csv_writer.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/output/vtk_writer.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 

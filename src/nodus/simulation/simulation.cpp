@@ -282,10 +282,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
         problem_->restore();  // evaluate the support forces at the committed state
         problem_->evaluate(residual, false);
         for (int c : stage.release)
-          conditions_.release(c, t0,
-                              problem_->full_residual().segment<beam::kNodeDofs>(
-                                  model_.node_dof(conditions_.node(c))),
-                              t1);
+          conditions_.release(
+              c, t0, problem_->full_residual().segment<beam::kNodeDofs>(model_.node_dof(conditions_.node(c))),
+              t1);
       }
       for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
       if (!stage.contact_off.empty() || !stage.contact_on.empty()) {
