@@ -34,13 +34,10 @@ std::string describe_position(const persistence::CheckpointInfo& info, const sce
 
 }  // namespace
 
-Outcome run(const Request& request) {
-  output::check_output_folder(request.out);  // before the scenario is read and echoed
-  return run(scenario::read_scenario(request.scenario_path), request);
-}
+namespace {
 
-Outcome run(scenario::Scenario scenario, const Request& request) {
-  output::check_output_folder(request.out);
+/// run(), the output folder checked.
+Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, scenario::describe(scenario));
   // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
@@ -151,6 +148,18 @@ Outcome run(scenario::Scenario scenario, const Request& request) {
   data.branches = std::move(outcomes);
   output::write_summary(out / "summary.json", data);
   return outcome;
+}
+
+}  // namespace
+
+Outcome run(const Request& request) {
+  output::check_output_folder(request.out);  // before the scenario is read and echoed
+  return run_checked(scenario::read_scenario(request.scenario_path), request);
+}
+
+Outcome run(scenario::Scenario scenario, const Request& request) {
+  output::check_output_folder(request.out);
+  return run_checked(std::move(scenario), request);
 }
 
 }  // namespace nodus::run
