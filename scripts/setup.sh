@@ -3,8 +3,10 @@
 set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libyaml-cpp-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
-  libopenblas0-openmp python3-numpy python3-matplotlib)
-# python3-numpy, python3-matplotlib: the knot example's loading program and report (scripts/knot_*.py).
+  libopenblas0-openmp python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest)
+# python3-dev, pybind11-dev: the Python module (python/); python3-pytest runs its tests.
+# python3-numpy, python3-matplotlib: the module's arrays, the knot example's loading program and report
+# (scripts/knot_*.py) and the Python examples.
 # libopenblas0-openmp: CHOLMOD's supernodal factorisation runs on the system BLAS; Debian's default
 # (netlib) is 4.6x slower on the contact tangent of a 27-fibre bundle (docs/performance.md). The OpenMP
 # build shares its threads with nodus's OpenMP regions instead of a second pool competing for the cores.

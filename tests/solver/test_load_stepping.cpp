@@ -342,7 +342,7 @@ TEST(LoadStepping, SecantPredictorExtrapolatesTheLastStep) {
 /// than a few tenths fail, and the stepping cuts back and grows.
 struct RealNewton {
   std::unique_ptr<LinearSolver> linear = make_linear_solver(LinearSolverKind::umfpack);
-  NewtonSolver newton{*linear, NewtonSettings{6, false, 6, 0.5}};
+  NewtonSolver newton{*linear, NewtonSettings{6, false, 6, 0.5, {}}};
   StepSolver solver() {
     return [this](SteppedProblem& p) { return newton.solve(p); };
   }

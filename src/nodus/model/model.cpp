@@ -62,6 +62,17 @@ Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> Model::node_strains(con
   return strains;
 }
 
+Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> Model::element_strains(const Eigen::VectorXd& x,
+                                                                                double xi) const {
+  Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> strains(beam::kNumStrains, num_elements());
+  for (int e = 0; e < num_elements(); ++e) {
+    const double h =
+        properties_[static_cast<std::size_t>(elements_[static_cast<std::size_t>(e)].beam)].length;
+    strains.col(e) = beam::strain_measures(beam::element_kinematics(gather(x, e), h, xi));
+  }
+  return strains;
+}
+
 double Model::internal_energy(const Eigen::VectorXd& x) const {
   double energy = 0.0;
   for (int e = 0; e < num_elements(); ++e)

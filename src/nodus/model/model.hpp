@@ -66,6 +66,11 @@ class Model {
   /// by two elements, the mean of the two elements' values.
   Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> node_strains(const Eigen::VectorXd& x) const;
 
+  /// The 15 strain measures of every element at its local coordinate `xi` in [-1, 1] (0: the element centre),
+  /// one column per element.
+  Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> element_strains(const Eigen::VectorXd& x,
+                                                                           double xi = 0.0) const;
+
   /// Total strain energy [N mm].
   double internal_energy(const Eigen::VectorXd& x) const;
   /// Internal force vector over all unknowns (prescribed ones too: there it carries the reactions), and the

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cerrno>
 #include <chrono>
+#include <csignal>
 #include <cstring>
 #include <map>
 #include <stdexcept>
@@ -48,7 +49,12 @@ fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& 
                                            scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
 }
 
-void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim) {
+void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim, bool cancelled) {
+  if (cancelled) {
+    spdlog::error("run cancelled at load time {:.6g} s, after {} converged steps; continue it with --resume",
+                  sim.time(), sim.steps());
+    return;
+  }
   spdlog::error(
       "run stopped after {} converged steps, as asked (--stop-after-steps), at load time {:.6g} s; "
       "continue it with --resume",
@@ -96,11 +102,15 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
                      start.own ? simulation::StartKind::resumed : simulation::StartKind::branched);
   RunOutputs branch_outputs(branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
                             "branch " + branch.name + ": ");
-  const simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), {steps_left});
+  simulation::RunOptions options;
+  options.stop_after_steps = steps_left;
+  options.cancel = request.cancel;
+  const simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), options);
   run.new_steps = summary.new_steps;
   if (summary.interrupted) {
     run.interrupted = true;
-    log_stopped_as_asked(request, branch_sim);
+    run.cancelled = summary.cancelled;
+    log_stopped_as_asked(request, branch_sim, summary.cancelled);
     return run;
   }
   outcome.converged = summary.converged;
@@ -141,11 +151,12 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   const BranchRun run = run_branch(request, main_scenario, b, start, request.stop_after_steps);
   Outcome outcome;
   outcome.interrupted = run.interrupted;
+  outcome.cancelled = run.cancelled;
   outcome.converged = !run.interrupted && run.outcome.converged;
   return outcome;
 }
 
-void run_branch_processes(const Request& request, const scenario::Scenario& main_scenario,
+bool run_branch_processes(const Request& request, const scenario::Scenario& main_scenario,
                           const std::vector<std::size_t>& todo, const std::vector<BranchStart>& starts,
                           std::size_t jobs, std::vector<BranchRun>& runs) {
   std::map<pid_t, std::size_t> running;
@@ -166,6 +177,15 @@ void run_branch_processes(const Request& request, const scenario::Scenario& main
     }
   };
   while (next < todo.size() || !running.empty()) {
+    if (request.cancel && request.cancel()) {
+      for (const auto& [pid, b] : running) kill(pid, SIGTERM);
+      for (const auto& [pid, b] : running) {
+        int status = 0;
+        while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+        }
+      }
+      return false;
+    }
     if (next < todo.size() && running.size() < jobs) {
       const std::size_t b = todo[next++];
       std::vector<std::string> args = {"nodus",
@@ -208,6 +228,7 @@ void run_branch_processes(const Request& request, const scenario::Scenario& main
     }
     if (!reaped) std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
+  return true;
 }
 
 }  // namespace nodus::run

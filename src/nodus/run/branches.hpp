@@ -28,7 +28,8 @@ struct BranchStart {
 /// What became of one branch.
 struct BranchRun {
   output::BranchOutcome outcome;
-  bool interrupted = false;  ///< stopped by stop_after_steps
+  bool interrupted = false;  ///< stopped by stop_after_steps or Request::cancel
+  bool cancelled = false;    ///< stopped by Request::cancel
   int new_steps = 0;         ///< steps computed here (not read back from a checkpoint)
 };
 
@@ -39,8 +40,8 @@ std::filesystem::path branch_start_checkpoint(const std::filesystem::path& out,
                                               const scenario::Scenario& scenario,
                                               const scenario::BranchSpec& branch);
 
-/// Logs the message of a run stopped by stop_after_steps.
-void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim);
+/// Logs the message of a run stopped by stop_after_steps, or by Request::cancel when `cancelled`.
+void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim, bool cancelled);
 
 /// Branch `b`'s outcome as far as it is known without running it: its name, start and friction; if it has
 /// finished (its summary.json exists), how it ended; if its start checkpoint is missing (the main run did not
@@ -58,8 +59,9 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
 Outcome run_one_branch(const Request& request, const scenario::Scenario& main_scenario);
 
 /// Runs the branches listed in `todo`, each in a process of Request::branch_executable, at most `jobs` at a
-/// time, and fills in their outcomes from the summary.json each writes.
-void run_branch_processes(const Request& request, const scenario::Scenario& main_scenario,
+/// time, and fills in their outcomes from the summary.json each writes. Returns false when Request::cancel
+/// stopped them (each process is sent SIGTERM and waited for; their checkpoints let the run resume).
+bool run_branch_processes(const Request& request, const scenario::Scenario& main_scenario,
                           const std::vector<std::size_t>& todo, const std::vector<BranchStart>& starts,
                           std::size_t jobs, std::vector<BranchRun>& runs);
 

@@ -55,7 +55,10 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
       const output::SummaryData done = output::read_summary(out / "summary.json");
       spdlog::info("the run in {} is already complete ({}); nothing to resume", out.string(),
                    done.converged ? "converged" : "stopped: " + done.failure);
-      return {done.converged, false, true};
+      Outcome complete;
+      complete.converged = done.converged;
+      complete.already_complete = true;
+      return complete;
     }
     const auto newest = persistence::newest_checkpoint(out / "checkpoints");
     if (!newest)
@@ -92,11 +95,15 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   int steps_left = request.stop_after_steps;
 
   RunOutputs outputs(out, main_scenario, request.quiet, main_scenario.branches.empty());
-  const simulation::RunSummary summary = sim.run(outputs.observers(), {steps_left});
+  simulation::RunOptions options;
+  options.stop_after_steps = steps_left;
+  options.cancel = request.cancel;
+  const simulation::RunSummary summary = sim.run(outputs.observers(), options);
   Outcome outcome;
   if (summary.interrupted) {
-    log_stopped_as_asked(request, sim);
+    log_stopped_as_asked(request, sim, summary.cancelled);
     outcome.interrupted = true;
+    outcome.cancelled = summary.cancelled;
     return outcome;
   }
   if (steps_left > 0) steps_left -= summary.new_steps;
@@ -122,6 +129,7 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
       if (runs[b].interrupted) {
         outcome.converged = false;
         outcome.interrupted = true;
+        outcome.cancelled = runs[b].cancelled;
         return outcome;
       }
       if (steps_left > 0) steps_left -= runs[b].new_steps;
@@ -136,7 +144,12 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
     if (!todo.empty())
       spdlog::info("{} branches to run, {} at a time, each in its own process", todo.size(),
                    std::min(jobs, todo.size()));
-    run_branch_processes(request, main_scenario, todo, branch_starts, jobs, runs);
+    if (!run_branch_processes(request, main_scenario, todo, branch_starts, jobs, runs)) {
+      spdlog::error("run cancelled: the branch processes were stopped; continue the run with --resume");
+      outcome.converged = false;
+      outcome.interrupted = outcome.cancelled = true;
+      return outcome;
+    }
   }
   std::vector<output::BranchOutcome> outcomes;
   for (BranchRun& r : runs) {

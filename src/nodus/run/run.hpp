@@ -9,6 +9,7 @@
 /// branches one at a time.
 
 #include <filesystem>
+#include <functional>
 #include <string>
 
 #include "nodus/scenario/scenario.hpp"
@@ -32,14 +33,19 @@ struct Request {
   /// NAME`). Empty: branches run in this process, one at a time, whatever `jobs` says (what a library caller
   /// such as Python gets by default; the results are the same).
   std::filesystem::path branch_executable;
+  /// Asked after every Newton iteration, every step and while branch processes run: true stops the run as
+  /// if it were killed there (the checkpoints let it resume; branch processes are terminated). The Python
+  /// module's Ctrl-C. Empty: never.
+  std::function<bool()> cancel;
 };
 
 /// How a run ended.
 struct Outcome {
   bool converged = false;    ///< the main run and every branch completed
-  bool interrupted = false;  ///< stopped by stop_after_steps
+  bool interrupted = false;  ///< stopped by stop_after_steps or by Request::cancel
   /// Nothing was computed: the run in `out` had already finished (resume).
   bool already_complete = false;
+  bool cancelled = false;  ///< stopped by Request::cancel
 };
 
 /// Runs `request.scenario_path` (see above). Bad input (the scenario, the out folder, --resume without a

@@ -123,6 +123,7 @@ solver::NewtonReport ContactLoops::solve() {
       ++stats_.normal_iterations;
       if (!r.converged) {
         total.failure = r.failure;
+        total.cancelled = r.cancelled;
         return total;
       }
       const contact::ContactGeometry kept = problem_.contact_geometry();

@@ -250,8 +250,11 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
   auto linear = solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver));
-  solver::NewtonSolver newton(*linear,
-                              {scenario_.solver.max_newton_iterations, scenario_.solver.line_search});
+  solver::NewtonSettings newton_settings;
+  newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
+  newton_settings.line_search = scenario_.solver.line_search;
+  newton_settings.cancel = options.cancel;
+  solver::NewtonSolver newton(*linear, newton_settings);
   std::optional<ContactLoops> loops;
   if (contact_enabled_ && contact_forces_)
     loops.emplace(model_, *problem_, newton, detection_, contact_beams_, laws_);
@@ -384,6 +387,11 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
           update_counters();
           for (StepObserver* o : observers) o->on_step(*this, record);
+          if (options.cancel && options.cancel()) {
+            summary.cancelled = true;
+            return false;
+          }
+          if (options.stop_when && options.stop_when(record)) return false;
           return options.stop_after_steps <= 0 || summary.new_steps < options.stop_after_steps;
         });
     if (!result.completed && !result.stopped) {
@@ -400,7 +408,10 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     }
     if (result.stopped) {
       summary.interrupted = true;
-      summary.failure = fmt::format("stopped after {} steps, as asked", summary.new_steps);
+      summary.cancelled = summary.cancelled || result.cancelled;
+      summary.failure = summary.cancelled
+                            ? fmt::format("cancelled after {} steps", summary.new_steps)
+                            : fmt::format("stopped after {} steps, as asked", summary.new_steps);
       break;
     }
   }

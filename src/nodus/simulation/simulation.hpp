@@ -5,6 +5,7 @@
 /// taken (Simulation::snapshot) and a run continued from it (Simulation::restore) exactly as if it had not
 /// stopped: checkpoints, `nodus run --resume` and branches rest on that.
 
+#include <functional>
 #include <memory>
 #include <string>
 #include <vector>
@@ -57,6 +58,8 @@ struct RunSummary {
   std::string failure;                ///< why the run stopped early
   /// Stopped on request (RunOptions::stop_after_steps), as if killed: on_finish was not called.
   bool interrupted = false;
+  /// Stopped by RunOptions::cancel (then `interrupted` is set too: the state is the last converged one).
+  bool cancelled = false;
   /// Steps converged by this call of run() (`steps` counts those of a restored state too).
   int new_steps = 0;
 };
@@ -106,6 +109,13 @@ struct RunOptions {
   /// For tests: stop the run, as if it were killed, after this many steps converged in this call (after the
   /// observers' on_step and, at a stage end, on_stage_end); 0: never.
   int stop_after_steps = 0;
+  /// Stops the run after the converged step for which it returns true (between steps, as stop_after_steps
+  /// does: a later run() goes on from there). Empty: never. The stepping interface of the Python module
+  /// (Simulation.step, run_stage) rests on it.
+  std::function<bool(const StepRecord&)> stop_when;
+  /// Asked after every Newton iteration and every converged step: true stops the run there, back at the last
+  /// converged state (RunSummary::cancelled); Ctrl-C in Python. Empty: never.
+  std::function<bool()> cancel;
 };
 
 class Simulation;

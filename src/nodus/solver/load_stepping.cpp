@@ -41,11 +41,13 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
   double& t = state.time;
   double& step = state.step;
   int cutbacks = 0;
+  double attempted_step = step;  // the size of the step attempt before its cutbacks
   // Secant predictor: the free unknowns move as in the last converged step, scaled to the new step.
   while (t1 - t > eps) {
     // No sliver at the stage end: a step within 1 % of the remainder takes all of it (a sliver of 1e-7 of
     // a step costs a full Newton solve, and under viscous stabilisation its drag stiffness ~ 1 / dt makes
     // it ill-conditioned).
+    if (cutbacks == 0) attempted_step = step;
     if (step >= (1.0 - kSliver) * (t1 - t)) step = t1 - t;
     const Eigen::VectorXd start = problem.unknowns();
     if (state.previous.size() == start.size() && state.previous_step > 0)
@@ -54,6 +56,11 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
     NewtonReport report = solve(problem);
     if (!report.converged) {
       problem.restore();
+      if (report.cancelled) {
+        step = attempted_step;
+        result.stopped = result.cancelled = true;
+        return result;
+      }
       if (cutbacks >= control.max_cutbacks) {
         result.failure = fmt::format("step from load time {:.9g} to {:.9g} failed after {} cutbacks: {}", t,
                                      t + step, cutbacks, report.failure);

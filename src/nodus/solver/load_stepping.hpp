@@ -40,7 +40,10 @@ struct StepResult {
 
 struct AdvanceResult {
   bool completed = false;  ///< t1 reached
-  bool stopped = false;    ///< on_step asked to stop (completed says whether that was at t1)
+  bool stopped = false;    ///< on_step asked to stop (completed says whether that was at t1), or cancelled
+  /// A solve was cancelled (NewtonSettings::cancel): the problem and the stepper state are back at the last
+  /// converged step.
+  bool cancelled = false;
   int steps = 0;
   std::string failure;
 };

@@ -116,6 +116,11 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
       report.converged = true;
       return report;
     }
+    if (settings_.cancel && settings_.cancel()) {
+      report.cancelled = true;
+      report.failure = fmt::format("cancelled after iteration {}", it);
+      return report;
+    }
     if (it < settings_.max_iterations) {
       const Stopwatch tangent_watch(timings_.evaluation);
       problem.evaluate(residual, true);

@@ -1,6 +1,7 @@
 #pragma once
 /// Newton-Raphson, optionally with a line search on the slope of the energy along the Newton direction.
 
+#include <functional>
 #include <string>
 
 #include "nodus/solver/linear_solver.hpp"
@@ -15,6 +16,9 @@ struct NewtonSettings {
   int max_line_search_iterations = 6;
   /// The step is accepted once |du . R(u + alpha du)| <= slope_ratio |du . R(u)|.
   double slope_ratio = 0.5;
+  /// Asked after each iteration: true stops the solve there (NewtonReport::cancelled), as Ctrl-C in Python
+  /// does. Empty: never.
+  std::function<bool()> cancel;
 };
 
 struct NewtonReport {
@@ -26,6 +30,7 @@ struct NewtonReport {
   double residual = 0.0;   ///< |R| at the end [residual units]
   double increment = 0.0;  ///< scaled size of the last increment
   std::string failure;     ///< why it did not converge
+  bool cancelled = false;  ///< stopped by NewtonSettings::cancel, not by a failure
 };
 
 /// Where Newton's time went, summed over all solves [s].

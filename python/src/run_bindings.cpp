@@ -1,0 +1,65 @@
+/// run(): `nodus run` as a call, the GIL released while it computes, Ctrl-C stopping it as a kill would.
+
+#include <filesystem>
+#include <string>
+
+#include <pybind11/stl.h>
+#include <spdlog/spdlog.h>
+
+#include "bindings.hpp"
+#include "interrupts.hpp"
+#include "nodus/output/logging.hpp"
+#include "nodus/run/run.hpp"
+
+namespace py = pybind11;
+
+namespace nodus::python {
+
+void bind_run(py::module_& m) {
+  py::class_<run::Outcome>(m, "RunOutcome", "How a run ended.")
+      .def_readonly("converged", &run::Outcome::converged, "The main run and every branch completed.")
+      .def_readonly("interrupted", &run::Outcome::interrupted,
+                    "Stopped before the end (stop_after_steps, or cancelled): resume it.")
+      .def_readonly("already_complete", &run::Outcome::already_complete,
+                    "Nothing was computed: the run in the folder had finished (resume).")
+      .def("__repr__", [](const run::Outcome& o) {
+        return "RunOutcome(converged=" + std::string(o.converged ? "True" : "False") +
+               ", interrupted=" + (o.interrupted ? "True" : "False") +
+               ", already_complete=" + (o.already_complete ? "True" : "False") + ")";
+      });
+
+  m.def(
+      "run",
+      [](const ScenarioHandle& scenario, const std::string& out, int jobs, bool resume, bool quiet,
+         bool verbose, const std::string& branch, int stop_after_steps, const std::string& executable) {
+        output::use_stderr_logger();
+        spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
+        run::Request request;
+        request.scenario_path = scenario->path;
+        request.out = out;
+        request.jobs = jobs;
+        request.resume = resume;
+        request.quiet = quiet;
+        request.verbose = verbose;
+        request.branch = branch;
+        request.stop_after_steps = stop_after_steps;
+        // Branch processes read the scenario file: a scenario built in code has none and runs its branches
+        // in this process, one at a time (the same results).
+        if (!scenario->path.empty()) request.branch_executable = executable;
+        Interrupts interrupts;
+        request.cancel = [&interrupts] { return interrupts.poll(); };
+        run::Outcome outcome;
+        {
+          py::gil_scoped_release release;
+          outcome = run::run(*scenario, request);
+        }
+        interrupts.rethrow();
+        return outcome;
+      },
+      py::arg("scenario"), py::arg("out"), py::arg("jobs") = 1, py::arg("resume") = false,
+      py::arg("quiet") = false, py::arg("verbose") = false, py::arg("branch") = "",
+      py::arg("stop_after_steps") = 0, py::arg("executable") = "",
+      "Runs a scenario as `nodus run` does; see nodus.run.");
+}
+
+}  // namespace nodus::python
