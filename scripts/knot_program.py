@@ -11,13 +11,24 @@ nodus interpolates a motion's rotation vector component-wise between keyframes, 
 many close keyframes (8 per waypoint interval), each rotation vector chosen among its equivalents (the
 angle plus a multiple of 360 degrees) as the one closest to the previous keyframe.
 
+The scenario is built as data (knot_scenario(), also for use from Python), checked by nodus's reader through
+the Python module (nodus.Scenario) and written with Scenario.to_yaml().
+
 Usage: scripts/knot_program.py [--elements N] [--force F] [--pin-release] > SCENARIO.yaml
-Requires python3-numpy (Debian).
+Requires python3-numpy (Debian) and the nodus module (PYTHONPATH=build/release/python, or found there).
 """
 
 import argparse
+import os
+import sys
 
 import numpy as np
+
+try:
+    import nodus
+except ImportError:  # from the source tree: the module built in build/release
+    sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "build", "release", "python"))
+    import nodus
 
 SUBSTEPS = 8  # keyframes per waypoint interval
 
@@ -70,8 +81,8 @@ class End:
         self.vector = None
 
     def move(self, waypoints):
-        """YAML motion target through `waypoints` = [(at, position, axis), ...] of one stage."""
-        lines = [f"      {self.name}:", "        keyframes:"]
+        """The keyframes of a motion target through `waypoints` = [(at, position, axis), ...] of one stage."""
+        keyframes = []
         at0 = 0.0
         for at, position, axis in waypoints:
             position = np.asarray(position, float)
@@ -84,18 +95,23 @@ class End:
                 self.rotation = rotation_between(self.axis, t) @ self.rotation
                 self.axis = t
                 self.vector = rotation_vector(self.rotation, self.vector)
-                lines.append(f"          - {{at: {at0 + u * (at - at0):.6g}, translation: {vec(p - self.reference)}, "
-                             f"rotation: {vec(np.degrees(self.vector))}}}")
+                keyframes.append({"at": num(at0 + u * (at - at0)), "translation": vec(p - self.reference),
+                                  "rotation": vec(np.degrees(self.vector))})
             self.position = position
             at0 = at
-        return "\n".join(lines)
+        return {"keyframes": keyframes}
+
+
+def num(x):
+    """x rounded to 6 significant digits, as the program has always written its numbers."""
+    return float(f"{x:.6g}")
 
 
 def vec(v):
-    return "[" + ", ".join(f"{x:.6g}" for x in v) + "]"
+    return [num(x) for x in v]
 
 
-FRICTIONS = ("0.30", "0.25", "0.20")  # the loosening branches (Sect. 7.2.2)
+FRICTIONS = (0.30, 0.25, 0.20)  # the loosening branches (Sect. 7.2.2)
 
 # The clamping beams (Sect. 7.2.1, Figs. 12b-f): two elastic beams of the rod's material and section, across
 # the top of the loop (along y), one above it and one below, each held at both ends. `clamp` brings them onto
@@ -116,39 +132,33 @@ CONTACT_DISTANCE = 0.2  # mm: rod radius + clamp radius
 
 
 def clamp_motions(offsets, keyframes=False):
-    """YAML motion targets of the four clamp supports. `offsets` maps 'top'/'bottom' to the translation (or,
+    """The motion targets of the four clamp supports. `offsets` maps 'top'/'bottom' to the translation (or,
     with `keyframes`, to a list of (at, translation)) of both supports of that beam."""
-    lines = []
+    motions = {}
     for side in ("top", "bottom"):
         for end in ("a", "b"):
             if keyframes:
-                lines += [f"      clamp_{side}_{end}:", "        keyframes:"]
-                lines += [f"          - {{at: {at:g}, translation: {vec(t)}}}" for at, t in offsets[side]]
+                motions[f"clamp_{side}_{end}"] = {
+                    "keyframes": [{"at": num(at), "translation": vec(t)} for at, t in offsets[side]]}
             else:
-                lines.append(f"      clamp_{side}_{end}: {{translation: {vec(offsets[side])}}}")
-    return "\n".join(lines)
+                motions[f"clamp_{side}_{end}"] = {"translation": vec(offsets[side])}
+    return motions
 
 
-def main():
-    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--elements", type=int, default=300, help="quadratic elements along the rod")
-    parser.add_argument("--force", type=float, default=0.5, help="tightening force on end B [N]")
-    parser.add_argument("--pin-release", action="store_true",
-                        help="let end A turn about its fixed position in the releases, and let them run to rest")
-    args = parser.parse_args()
-
+def knot_scenario(elements=300, force=0.5, pin_release=False):
+    """The knot's scenario as data (the keys of a scenario file, docs/scenario.md)."""
     a = End("end_a", [-10, 0, 0])
     b = End("end_b", [10, 0, 0])
     p = 3.9  # the ends of the loop sit at (-p, -p) and (p, -p)
     diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2)
     feed = 3.0  # end A pushes this much rod towards the knot while end B threads the loop
-    loop = [a.move([(1.0, [-p, -p, 0], [1, 1, 0])]),
-            b.move([(0.3, [p + 2, 1, 0], [0, 1, 0]), (0.6, [0, 3.5, 0.1], [-1, 0, 0]),
-                    (0.8, [-1.5, 1, 0.25], [0, -1, 0]), (1.0, [p, -p, 0.35], [1, -1, 0])])]
-    thread = [a.move([(1.0, np.array([-p, -p, 0]) + feed * diagonal, [1, 1, 0])]),
-              b.move([(0.15, [4.7, -4.5, -0.3], [0.3, -0.3, -1]), (0.3, [4.2, -3.6, -0.8], [-0.6, 1, -0.2]),
-                      (0.5, [3.2, -1.3, -0.8], [-0.2, 1, 0.3]), (0.65, [3.1, -1.0, 0.6], [0.3, 0.2, 1]),
-                      (0.8, [4.5, -1.0, 0.8], [1, 0, 0]), (1.0, [6, -1, 0.5], [1, 0, 0])])]
+    loop = {"end_a": a.move([(1.0, [-p, -p, 0], [1, 1, 0])]),
+            "end_b": b.move([(0.3, [p + 2, 1, 0], [0, 1, 0]), (0.6, [0, 3.5, 0.1], [-1, 0, 0]),
+                             (0.8, [-1.5, 1, 0.25], [0, -1, 0]), (1.0, [p, -p, 0.35], [1, -1, 0])])}
+    thread = {"end_a": a.move([(1.0, np.array([-p, -p, 0]) + feed * diagonal, [1, 1, 0])]),
+              "end_b": b.move([(0.15, [4.7, -4.5, -0.3], [0.3, -0.3, -1]), (0.3, [4.2, -3.6, -0.8], [-0.6, 1, -0.2]),
+                               (0.5, [3.2, -1.3, -0.8], [-0.2, 1, 0.3]), (0.65, [3.1, -1.0, 0.6], [0.3, 0.2, 1]),
+                               (0.8, [4.5, -1.0, 0.8], [1, 0, 0]), (1.0, [6, -1, 0.5], [1, 0, 0])])}
     # The clamp: each beam starts CLAMP_AWAY above or below the top of the loop, and is brought to touching
     # less CLAMP_DEPTH.
     side = {"top": 1.0, "bottom": -1.0}
@@ -160,47 +170,77 @@ def main():
     clamp_start = {k: LOOP_TOP_START + [0, -CLAMP_LENGTH / 2, z * CLAMP_AWAY] for k, z in side.items()}
 
     # Each end's position and orientation are two conditions, so that either can be let go on its own: end B
-    # is let go entirely for the pull; with --pin-release, end A keeps its position but turns freely once the
+    # is let go entirely for the pull; with pin_release, end A keeps its position but turns freely once the
     # force is released.
-    for stage in (loop, thread):
-        stage[0] += "\n" + stage[0].replace("      end_a:", "      end_a_turn:", 1)
-        stage[1] += "\n" + stage[1].replace("      end_b:", "      end_b_turn:", 1)
-    # --pin-release: end A turns freely about its fixed position once the force is released, and the knot is
+    for motions in (loop, thread):
+        motions["end_a_turn"] = motions["end_a"]
+        motions["end_b_turn"] = motions["end_b"]
+    loop = {k: loop[k] for k in ("end_a", "end_a_turn", "end_b", "end_b_turn")}
+    thread = {k: thread[k] for k in ("end_a", "end_a_turn", "end_b", "end_b_turn")}
+    thread.update(follow)
+
+    # pin_release: end A turns freely about its fixed position once the force is released, and the knot is
     # given 600 s more to come to rest (docs/knot.md: it does; with end A clamped it keeps sliding open).
-    pin = "\n        release: [end_a_turn]" if args.pin_release else ""
-    rest_long = """
-      - name: rest_long
-        steps: 60
-        duration: 600
-        stabilization: 0.01""" if args.pin_release else ""
-    branches = "".join(f"""
-  - name: mu_{mu}
-    from: settle
-    contact: {{friction: {mu}}}
-    stages:
-      - name: release
-        steps: 20
-        stabilization: 0.01{pin}
-        loads:
-          pull_b: {{force: [0, 0, 0]}}
-      - name: rest
-        steps: 20
-        duration: 40
-        stabilization: 0.01{rest_long}""" for mu in FRICTIONS)
-    pin_note = ("""
-#           With --pin-release end A turns freely about its fixed position during release, and rest_long lets
-#           the knot come to rest.""" if args.pin_release else "")
-    print(f"""# The monofilament overhand knot of Durville (2012), Sect. 7.2 and Table 1: a rod 20 mm long, radius 0.1 mm,
+    def branch(mu):
+        release = {"name": "release", "steps": 20, "stabilization": 0.01}
+        if pin_release:
+            release["release"] = ["end_a_turn"]
+        release["loads"] = {"pull_b": {"force": [0, 0, 0]}}
+        stages = [release, {"name": "rest", "steps": 20, "duration": 40, "stabilization": 0.01}]
+        if pin_release:
+            stages.append({"name": "rest_long", "steps": 60, "duration": 600, "stabilization": 0.01})
+        return {"name": f"mu_{mu:.2f}", "from": "settle", "contact": {"friction": mu}, "stages": stages}
+
+    rod = {"material": "nylon", "radius": 0.1}
+    clamp_beam = {"material": "nylon", "radius": 0.1, "length": num(CLAMP_LENGTH), "elements": CLAMP_ELEMENTS,
+                  "direction": [0, 1, 0], "director1": [1, 0, 0]}
+    return {
+        "units": {"length": "mm", "force": "N", "stress": "MPa", "time": "s"},
+        "materials": [{"name": "nylon", "young_modulus": 4000, "poisson_ratio": 0.3}],
+        "beams": [
+            {"name": "rod", **rod, "length": 20, "elements": elements, "start": [-10, 0, 0],
+             "direction": [1, 0, 0], "director1": [0, 1, 0], "bending_factor": 0.3},
+            {"name": "clamp_top", **clamp_beam, "start": vec(clamp_start["top"])},
+            {"name": "clamp_bottom", **clamp_beam, "start": vec(clamp_start["bottom"])}],
+        "conditions": [
+            {"name": "end_a", "type": "motion", "beam": "rod", "at": "start", "dofs": ["position"]},
+            {"name": "end_a_turn", "type": "motion", "beam": "rod", "at": "start", "dofs": ["directors"]},
+            {"name": "end_b", "type": "motion", "beam": "rod", "at": "end", "dofs": ["position"]},
+            {"name": "end_b_turn", "type": "motion", "beam": "rod", "at": "end", "dofs": ["directors"]},
+            {"name": "pull_b", "type": "load", "beam": "rod", "at": "end", "active": False},
+            {"name": "clamp_top_a", "type": "motion", "beam": "clamp_top", "at": "start"},
+            {"name": "clamp_top_b", "type": "motion", "beam": "clamp_top", "at": "end"},
+            {"name": "clamp_bottom_a", "type": "motion", "beam": "clamp_bottom", "at": "start"},
+            {"name": "clamp_bottom_b", "type": "motion", "beam": "clamp_bottom", "at": "end"}],
+        "stages": [
+            {"name": "loop", "steps": 60, "motions": loop},
+            {"name": "clamp", "steps": 10, "stabilization": 0.01, "motions": clamp},
+            {"name": "thread", "steps": 100, "stabilization": 0.01, "motions": thread},
+            {"name": "unclamp", "steps": 4, "stabilization": 0.01, "contact_off": ["clamp_top", "clamp_bottom"],
+             "motions": unclamp},
+            {"name": "pull", "steps": 40, "stabilization": 0.01, "release": ["end_b", "end_b_turn"],
+             "activate": ["pull_b"], "loads": {"pull_b": {"force": [num(force), 0, 0]}}},
+            {"name": "settle", "steps": 16, "duration": 8, "stabilization": 0.01}],
+        "branches": [branch(mu) for mu in FRICTIONS],
+        "contact": {"friction": 0.3, "max_detections": 2, "particles": "facing"},
+        "solver": {"linear_solver": "umfpack", "line_search": False, "max_newton_iterations": 40,
+                   "easy_iterations": 10},
+        "output": {"vtk_every": 10, "checkpoint_every": 50},
+    }
+
+
+HEADER = """\
+# The monofilament overhand knot of Durville (2012), Sect. 7.2 and Table 1: a rod 20 mm long, radius 0.1 mm,
 # E = 4000 MPa, nu = 0.3, bending stiffness x 0.3, tied from its straight state by moving its ends,
 # tightened by pulling one end, then released for mu = 0.3, 0.25 and 0.2 (docs/knot.md).
-# Generated by scripts/knot_program.py --elements {args.elements} --force {args.force:g}{' --pin-release' if args.pin_release else ''};
+# Generated by scripts/knot_program.py {arguments};
 # edit that script, not this file.
 #  loop:    end B is carried round and over the rod, making a loop with one crossing (end A turns by 45 deg);
 #  clamp:   two clamping beams, held at their ends, are brought onto the top of the loop from above and below;
 #  thread:  end B dives under the loop, comes up through it and leaves over its far side, while end A feeds
 #           rod into the loop and the clamp follows the top of the loop;
 #  unclamp: the clamping beams are taken out of contact and lifted away;
-#  pull:    end B is let go (position and section) and a force of {args.force:g} N pulls it along +x; end A stays
+#  pull:    end B is let go (position and section) and a force of {force:g} N pulls it along +x; end A stays
 #           clamped;
 #  settle:  the force held until the knot stops moving: the tightened knot (Figs. 13, 14);
 #  branches mu_*: from the tightened knot, the force decreases to 0 (release) and the knot, held by friction
@@ -208,66 +248,23 @@ def main():
 # Every stage after loop carries a viscous drag (stages[].stabilization, docs/model.md) that keeps the rod from
 # snapping through; it vanishes as the rod comes to rest, and steps.csv reports what is left of it
 # (stabilization_force).
-units: {{length: mm, force: N, stress: MPa, time: s}}
-materials:
-  - {{name: nylon, young_modulus: 4000, poisson_ratio: 0.3}}
-beams:
-  - {{name: rod, material: nylon, radius: 0.1, length: 20, elements: {args.elements}, start: [-10, 0, 0],
-     direction: [1, 0, 0], director1: [0, 1, 0], bending_factor: 0.3}}
-  - {{name: clamp_top, material: nylon, radius: 0.1, length: {CLAMP_LENGTH:g}, elements: {CLAMP_ELEMENTS},
-     start: {vec(clamp_start["top"])}, direction: [0, 1, 0], director1: [1, 0, 0]}}
-  - {{name: clamp_bottom, material: nylon, radius: 0.1, length: {CLAMP_LENGTH:g}, elements: {CLAMP_ELEMENTS},
-     start: {vec(clamp_start["bottom"])}, direction: [0, 1, 0], director1: [1, 0, 0]}}
-conditions:
-  - {{name: end_a, type: motion, beam: rod, at: start, dofs: [position]}}
-  - {{name: end_a_turn, type: motion, beam: rod, at: start, dofs: [directors]}}
-  - {{name: end_b, type: motion, beam: rod, at: end, dofs: [position]}}
-  - {{name: end_b_turn, type: motion, beam: rod, at: end, dofs: [directors]}}
-  - {{name: pull_b, type: load, beam: rod, at: end, active: false}}
-  - {{name: clamp_top_a, type: motion, beam: clamp_top, at: start}}
-  - {{name: clamp_top_b, type: motion, beam: clamp_top, at: end}}
-  - {{name: clamp_bottom_a, type: motion, beam: clamp_bottom, at: start}}
-  - {{name: clamp_bottom_b, type: motion, beam: clamp_bottom, at: end}}
-stages:
-  - name: loop
-    steps: 60
-    motions:
-{chr(10).join(loop)}
-  - name: clamp
-    steps: 10
-    stabilization: 0.01
-    motions:
-{clamp}
-  - name: thread
-    steps: 100
-    stabilization: 0.01
-    motions:
-{chr(10).join(thread)}
-{follow}
-  - name: unclamp
-    steps: 4
-    stabilization: 0.01
-    contact_off: [clamp_top, clamp_bottom]
-    motions:
-{unclamp}
-  - name: pull
-    steps: 40
-    stabilization: 0.01
-    release: [end_b, end_b_turn]
-    activate: [pull_b]
-    loads:
-      pull_b: {{force: [{args.force:g}, 0, 0]}}
-  - name: settle
-    steps: 16
-    duration: 8
-    stabilization: 0.01
-branches:{branches}
-contact:
-  friction: 0.3
-  max_detections: 2
-  particles: facing
-solver: {{linear_solver: umfpack, line_search: false, max_newton_iterations: 40, easy_iterations: 10}}
-output: {{vtk_every: 10, checkpoint_every: 50}}""")
+"""
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    parser.add_argument("--elements", type=int, default=300, help="quadratic elements along the rod")
+    parser.add_argument("--force", type=float, default=0.5, help="tightening force on end B [N]")
+    parser.add_argument("--pin-release", action="store_true",
+                        help="let end A turn about its fixed position in the releases, and let them run to rest")
+    args = parser.parse_args()
+    # Built and checked by nodus's own reader through the Python module, then written as a scenario file.
+    scenario = nodus.Scenario(knot_scenario(args.elements, args.force, args.pin_release))
+    pin_note = ("""
+#           With --pin-release end A turns freely about its fixed position during release, and rest_long lets
+#           the knot come to rest.""" if args.pin_release else "")
+    arguments = f"--elements {args.elements} --force {args.force:g}" + (" --pin-release" if args.pin_release else "")
+    sys.stdout.write(HEADER.format(arguments=arguments, force=args.force, pin_note=pin_note) + scenario.to_yaml())
 
 
 if __name__ == "__main__":

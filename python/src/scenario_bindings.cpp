@@ -44,6 +44,31 @@ bool is_scalar_list(py::handle list) {
   return true;
 }
 
+void emit(YAML::Emitter& out, py::handle value, const std::string& where);
+
+/// Whether a dict is written on one line, in flow style ({at: 0.5, translation: [1, 0, 0]}): when its values
+/// are scalars or lists of scalars and the line stays within kFlowWidth characters, as a person would write
+/// it.
+constexpr std::size_t kFlowWidth = 100;
+bool fits_one_line(py::handle dict, const std::string& where) {
+  for (auto item : py::reinterpret_borrow<py::dict>(dict)) {
+    py::handle v = item.second;
+    if (py::hasattr(v, "tolist") && !py::isinstance<py::str>(v)) return false;
+    if (py::isinstance<py::dict>(v)) return false;
+    if ((py::isinstance<py::list>(v) || py::isinstance<py::tuple>(v)) && !is_scalar_list(v)) return false;
+  }
+  YAML::Emitter line;
+  line << YAML::Flow;
+  line << YAML::BeginMap;
+  for (auto [key, item] : py::reinterpret_borrow<py::dict>(dict)) {
+    if (!py::isinstance<py::str>(key)) return false;
+    line << YAML::Key << key.cast<std::string>() << YAML::Value;
+    emit(line, item, where);
+  }
+  line << YAML::EndMap;
+  return line.good() && line.size() <= kFlowWidth;
+}
+
 /// Emits Python data as YAML: dicts as block maps (text keys), lists and tuples as sequences (flow style when
 /// they hold only scalars, as [x, y, z]), bool as true/false, int as is, float as Python's shortest repr
 /// that reads back to the same double, None as null, text as a string (quoted by the emitter where YAML
@@ -54,6 +79,7 @@ void emit(YAML::Emitter& out, py::handle value, const std::string& where) {
     return;
   }
   if (py::isinstance<py::dict>(value)) {
+    if (fits_one_line(value, where)) out << YAML::Flow;
     out << YAML::BeginMap;
     for (auto [key, item] : py::reinterpret_borrow<py::dict>(value)) {
       if (!py::isinstance<py::str>(key)) data_error(where, "a key name (str)", key);
