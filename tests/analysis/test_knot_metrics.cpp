@@ -89,9 +89,9 @@ TEST(FitCircle, QuarterArcWithUnevenPointsGivesItsRadius) {
     points.row(static_cast<Eigen::Index>(k)) =
         (centre + radius * (std::cos(theta) * e1 + std::sin(theta) * e2)).transpose();
   }
-  // A quarter arc far from the origin: the fit works on centred coordinates; 1e-10 leaves room for the
-  // conditioning of the short arc (the exact answer needs no noise-free luck: the residual is zero).
-  EXPECT_NEAR(fit_circle(points), radius, 1e-10 * radius);
+  // A quarter arc 40 mm from the origin: the fit works on centred coordinates, and points on a circle
+  // satisfy the Kasa equations exactly (zero residual), so the short arc loses nothing.
+  EXPECT_NEAR(fit_circle(points), radius, 1e-12 * radius);
 }
 
 TEST(FitCircle, FewerThanThreePointsIsNaN) {
@@ -150,7 +150,8 @@ TEST(TailAngle, StraightTailsGiveTheAngleBetweenThem) {
   EXPECT_NEAR(tail_angle(c, 3.75, 6.25), alpha, 1e-10);
   EXPECT_NEAR(tail_angle(c, 1.0, 9.5), alpha, 1e-10);
   EXPECT_NEAR(tail_angle(c, 4.0, 6.0, 0.3), alpha, 1e-10);
-  // Tails pulled apart: 180 degrees.
+  // Tails pulled apart: 180 degrees. acos is steep at -1: a rounding error eps of the cosine moves the angle
+  // by sqrt(2 eps) rad, 1e-6 deg for eps = 1e-16.
   EXPECT_NEAR(tail_angle(two_tails(u_a, -u_a), 4.0, 6.0), 180.0, 1e-6);
 }
 
