@@ -74,10 +74,12 @@ ContactTable sorted_by_zone_and_zeta(const ContactTable& table, std::vector<std:
 
 /// The constants of knot_report.py, as defaults.
 struct KnotMetricsOptions {
-  double tail_chord = 2.0;  ///< TAIL_CHORD: length along each tail of the chord giving its direction [mm]
-  double min_spacing =
-      0.05;                ///< MIN_SPACING: least element spacing for the contact coverage of the loop [mm]
-  int min_loop_nodes = 5;  ///< MIN_LOOP_NODES: centreline nodes needed for the circle fit of the loop
+  /// TAIL_CHORD: length along each tail of the chord giving its direction [mm].
+  double tail_chord = 2.0;
+  /// MIN_SPACING: least element spacing for the contact coverage of the loop [mm].
+  double min_spacing = 0.05;
+  /// MIN_LOOP_NODES: centreline nodes needed for the circle fit of the loop.
+  int min_loop_nodes = 5;
 };
 
 /// DEFAULT_RADIUS of knot_report.py: the rod radius of Sect. 7.2 when the contact tables give none [mm].
@@ -129,7 +131,8 @@ std::optional<Interval> longest_uncovered(std::vector<double> centres, double ha
 /// singular vectors e1, e2 of the centred points (JacobiSVD), then the algebraic fit of Kasa (1976) in it:
 /// (u_k, v_k) = ((p_k - mean) . e1, (p_k - mean) . e2); least squares of
 ///   2 u c_u + 2 v c_v + c = u^2 + v^2,   radius = sqrt(c + c_u^2 + c_v^2).
-/// Exact for points on a circle, however short the arc. NaN for fewer than three points.
+/// Exact, to rounding, for points on a circle (zero residual), also on a short arc. NaN for fewer than
+/// three points (knot_report.py's fit_circle fails below two).
 double fit_circle(const Points& points);
 
 /// The loop of a knot: radius [mm] of the circle fitted to its nodes, its length in arc length [mm].
@@ -141,7 +144,9 @@ struct LoopGeometry {
 /// The loop of the knot [s_a, s_b]: the longest sub-interval of [s_a, s_b] farther than h from every
 /// abscissa_i and abscissa_j of an element in contact (normal_force > 0), h = element_spacing(contact) / 2;
 /// its length, and the radius of the circle fitted to the centreline nodes with s in it (NaN below
-/// `options.min_loop_nodes` nodes). Both NaN when the contact covers [s_a, s_b].
+/// `options.min_loop_nodes` nodes). Both NaN when the contact covers [s_a, s_b]. As in knot_report.py, two
+/// touched abscissas about 2 h apart may leave between them a gap of rounding size (1e-16 mm), which then
+/// counts as a loop of that length (radius NaN: no node in it).
 LoopGeometry loop_geometry(const Centreline& centreline, const ContactTable& contact, double s_a, double s_b,
                            const KnotMetricsOptions& options = {});
 
