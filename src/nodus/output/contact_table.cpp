@@ -1,6 +1,7 @@
 #include "nodus/output/contact_table.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <cstdint>
 #include <iterator>
 #include <stdexcept>
@@ -91,6 +92,35 @@ std::string contact_csv_header(bool with_forces) {
   return header;
 }
 
+ContactRow contact_row(const contact::ContactGeometry& geometry, std::size_t k,
+                       const std::vector<simulation::ContactState>* states) {
+  assert(k < geometry.elements.size());
+  const contact::ContactElement& e = geometry.elements[k];
+  const contact::ProximityZone& zone = geometry.zones[static_cast<std::size_t>(e.zone)];
+  ContactRow row;
+  row.zone = e.zone;
+  row.beam_i = zone.beam_i;
+  row.beam_j = zone.beam_j;
+  row.zeta = e.zeta;
+  row.abscissa_i = e.particle_i.abscissa;
+  row.abscissa_j = e.particle_j.abscissa;
+  row.transverse_i = e.particle_i.transverse;
+  row.transverse_j = e.particle_j.transverse;
+  row.position_i = e.position_i;
+  row.position_j = e.position_j;
+  row.normal = e.normal;
+  row.gap = e.gap;
+  if (states) {
+    const simulation::ContactState& s = (*states)[k];
+    row.with_forces = true;
+    row.normal_force = s.normal_reaction;
+    row.tangential_force = s.tangential.norm();
+    row.tangential = s.tangential;
+    row.status = contact_status(s);
+  }
+  return row;
+}
+
 std::string contact_final_csv(const contact::ContactGeometry& geometry,
                               const std::vector<std::string>& beam_names,
                               const std::vector<simulation::ContactState>* states) {
@@ -100,23 +130,19 @@ std::string contact_final_csv(const contact::ContactGeometry& geometry,
   fmt::memory_buffer out;
   fmt::format_to(std::back_inserter(out), "{}\n", contact_csv_header(states != nullptr));
   for (std::size_t k = 0; k < geometry.elements.size(); ++k) {
-    const contact::ContactElement& e = geometry.elements[k];
-    const contact::ProximityZone& zone = geometry.zones[static_cast<std::size_t>(e.zone)];
-    fmt::format_to(std::back_inserter(out), "{},{},{},{:.10g},{:.10g},{:.10g}", e.zone,
-                   beam_field(beam_names, zone.beam_i, kContext),
-                   beam_field(beam_names, zone.beam_j, kContext), e.zeta, e.particle_i.abscissa,
-                   e.particle_j.abscissa);
-    for (const auto& v : {e.particle_i.transverse, e.particle_j.transverse})
+    const ContactRow r = contact_row(geometry, k, states);
+    fmt::format_to(std::back_inserter(out), "{},{},{},{:.10g},{:.10g},{:.10g}", r.zone,
+                   beam_field(beam_names, r.beam_i, kContext), beam_field(beam_names, r.beam_j, kContext),
+                   r.zeta, r.abscissa_i, r.abscissa_j);
+    for (const auto& v : {r.transverse_i, r.transverse_j})
       fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g}", v.x(), v.y());
-    for (const contact::Vec3& v : {e.position_i, e.position_j, e.normal})
+    for (const Eigen::Vector3d& v : {r.position_i, r.position_j, r.normal})
       fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g}", v.x(), v.y(), v.z());
-    fmt::format_to(std::back_inserter(out), ",{:.10g}", e.gap);
-    if (states) {
-      const simulation::ContactState& s = (*states)[k];
-      fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}",
-                     s.normal_reaction, s.tangential.norm(), s.tangential.x(), s.tangential.y(),
-                     s.tangential.z(), status_name(contact_status(s)));
-    }
+    fmt::format_to(std::back_inserter(out), ",{:.10g}", r.gap);
+    if (r.with_forces)
+      fmt::format_to(std::back_inserter(out), ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{}", r.normal_force,
+                     r.tangential_force, r.tangential.x(), r.tangential.y(), r.tangential.z(),
+                     status_name(r.status));
     out.push_back('\n');
   }
   return fmt::to_string(out);

@@ -7,11 +7,14 @@
 /// gap = <x_j - x_i, n>, negative when the surfaces overlap; the contact force on J is R_N n + T (on I its
 /// opposite), T the friction force on J; zones and elements are numbered from 0 in the order of the geometry.
 
+#include <cstddef>
 #include <filesystem>
 #include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
+
+#include <Eigen/Core>
 
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
@@ -49,6 +52,35 @@ std::optional<double> smallest_gap(const contact::ContactGeometry& geometry,
 
 /// The beam names of `model`, by beam index.
 std::vector<std::string> beam_names(const model::Model& model);
+
+/// One row of the contact element table as numbers: what contact_final_csv writes for one element, before
+/// formatting. analysis::contact_table builds its in-memory columns from these rows too, so that the CSV
+/// and the in-memory table cannot disagree (beyond the CSV's ten significant digits).
+struct ContactRow {
+  int zone = 0;                                            ///< zone index (from 0)
+  int beam_i = 0;                                          ///< the zone's beam I (model index)
+  int beam_j = 0;                                          ///< the zone's beam J (model index)
+  double zeta = 0.0;                                       ///< relative abscissa on the zone, in [0, 1]
+  double abscissa_i = 0.0;                                 ///< xi3 of the particle on I [mm]
+  double abscissa_j = 0.0;                                 ///< xi3 of the particle on J [mm]
+  Eigen::Vector2d transverse_i = Eigen::Vector2d::Zero();  ///< (xi1, xi2) of the particle on I [mm]
+  Eigen::Vector2d transverse_j = Eigen::Vector2d::Zero();  ///< (xi1, xi2) of the particle on J [mm]
+  Eigen::Vector3d position_i = Eigen::Vector3d::Zero();    ///< current position of the particle on I [mm]
+  Eigen::Vector3d position_j = Eigen::Vector3d::Zero();    ///< current position of the particle on J [mm]
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();       ///< unit normal, from I towards J [-]
+  double gap = 0.0;                                        ///< <x_j - x_i, n> [mm]
+  bool with_forces = false;                                ///< the four fields below are set
+  double normal_force = 0.0;                               ///< R_N [N]
+  double tangential_force = 0.0;                           ///< |T| [N]
+  Eigen::Vector3d tangential = Eigen::Vector3d::Zero();    ///< friction force T on beam J [N]
+  ContactStatus status = ContactStatus::open;              ///< contact_status of the element's state
+};
+
+/// Row `k` of the contact element table of `geometry`, with the forces of (*states)[k] when `states` is
+/// given. `geometry` must have passed check_contact_geometry and `states` check_contact_states; k must be
+/// an element index.
+ContactRow contact_row(const contact::ContactGeometry& geometry, std::size_t k,
+                       const std::vector<simulation::ContactState>* states);
 
 /// The header line of the contact element table (no line end):
 /// `zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,x_j,y_j,z_j,nx,ny,nz,gap`,
