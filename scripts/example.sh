@@ -9,11 +9,11 @@ scenario=${1:-examples/monofilament_knot.yaml}
 out=${2:-results/$(basename "$scenario" .yaml)}
 scripts/setup.sh
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
-cmake --build build/release --target nodus
+cmake --build build/release --target nodus nodus_python  # the report's knot metrics come from the module
 build/release/nodus run "$scenario" --out "$out"
 if [ "$(basename "$scenario" .yaml)" = monofilament_knot ]; then
   # Debian's python3 (with python3-numpy and python3-matplotlib from scripts/setup.sh).
-  /usr/bin/python3 scripts/knot_report.py "$out"
+  PYTHONPATH=build/release/python /usr/bin/python3 scripts/knot_report.py "$out"
   echo "report: $out/report (knot_report.csv, reactions_*.csv, fig12/14/15/17 PNG files)"
 fi
 echo "results: $out (summary.json, steps.csv, final_nodes.csv, stages/, branches/; open $out/result.pvd in ParaView)"

@@ -24,7 +24,8 @@ from ._nodus import ScenarioError, RunOutcome
 __version__ = _nodus.version
 
 __all__ = ["Scenario", "ScenarioError", "RunOutcome", "Simulation", "run", "keys", "strain_names",
-           "contact_states", "knot_invariant", "min_self_distance", "__version__"]
+           "contact_states", "knot_invariant", "min_self_distance", "knot_metrics", "tail_angle", "fit_circle",
+           "rod_radius", "__version__"]
 
 #: Names of the 15 strain measures, in the order of the columns of Simulation.element_strains().
 strain_names = tuple(_nodus.strain_names)
@@ -263,6 +264,13 @@ class Simulation:
         """(nodes, 15): the strain measures at each node (mean of the elements that share it)."""
         return self._sim.node_strains()
 
+    def centreline(self, beam=0, segments_per_element=2):
+        """(points (n, 3) [mm], arc_length (n,) [mm]): the axis of beam `beam` (index or name) as a polyline;
+        with 2 segments per element its nodes, with more also points of each element's quadratic axis."""
+        if isinstance(beam, str):
+            beam = self.scenario.beams.index(beam)
+        return self._sim.centreline(beam, segments_per_element)
+
     def contact_elements(self):
         """The contact elements of the last converged state as a dict of arrays, one row per element in the
         order of contact_final.csv: zone, beam_i, beam_j, element_i, element_j, zeta, abscissa_i, abscissa_j
@@ -303,3 +311,82 @@ def min_self_distance(points, arc_length, separation):
     """(distance, s1, s2): the smallest distance [mm] between two points of the polyline `points` whose
     reference arc lengths `arc_length` differ by at least `separation` [mm]."""
     return _nodus.min_self_distance(points, arc_length, separation)
+
+
+#: The constants of the knot metrics (scripts/knot_report.py's definitions): the chord along each tail that
+#: gives its direction [mm], the least contact-element spacing used for the contact coverage of the loop [mm],
+#: and the nodes needed for the circle fit of the loop.
+KNOT_DEFAULTS = {"tail_chord": 2.0, "min_spacing": 0.05, "min_loop_nodes": 5}
+
+
+def _centreline(nodes):
+    if isinstance(nodes, tuple):
+        return nodes
+    if isinstance(nodes, dict):
+        import numpy as np
+        return np.column_stack([nodes["x"], nodes["y"], nodes["z"]]), nodes["s"]
+    raise TypeError("nodes: expected a Simulation, (points, arc_length) or a dict with s, x, y, z")
+
+
+def _contact_columns(contact):
+    """A contact table with `state` and the beams as numbers (contact_final.csv has them as text: the beams
+    are then numbered in the order their names first appear)."""
+    import numpy as np
+    contact = dict(contact)
+    state = contact.get("state")
+    if state is not None and len(state) and isinstance(state[0], str):
+        contact["state"] = np.array([contact_states.index(s) for s in state])
+    beams = [contact.get("beam_i"), contact.get("beam_j")]
+    if all(b is not None for b in beams) and len(beams[0]) and isinstance(beams[0][0], str):
+        names = list(dict.fromkeys(list(beams[0]) + list(beams[1])))
+        for key, column in zip(("beam_i", "beam_j"), beams):
+            contact[key] = np.array([names.index(b) for b in column])
+    return contact
+
+
+def knot_metrics(nodes, contact=None, *, beam=0, tail_chord=2.0, min_spacing=0.05, min_loop_nodes=5):
+    """The metrics of a knot state (docs/knot.md; scripts/knot_report.py prints them):
+
+    nodes: a Simulation (then its beam `beam` and its contact elements are used), or (points (n, 3),
+        arc_length (n,)) of the rod's nodes in order, or a dict with columns s, x, y, z (final_nodes.csv of one
+        beam, sorted by s);
+    contact: a dict of columns, one entry per contact element: Simulation.contact_elements() or the columns of
+        contact_final.csv (zone, zeta, abscissa_i, abscissa_j, x_i .. z_j, gap, normal_force,
+        tangential_force, state).
+
+    Returns a dict: zones, contact_elements, elements_in_contact; s_a, s_b (the arc length [mm] the elements
+    in contact span: the knot); intermediate_length (sum over zones of the span of the elements in contact
+    along the intermediate geometry) [mm]; max_normal, total_normal, max_tangential, total_tangential [N];
+    tail_angle [deg] (180: tails pulled apart); loop_radius, loop_length [mm]; max_penetration [mm]; and
+    `reactions`, per element sorted by (zone, zeta): element (index in `contact`), zone, zeta, abscissa
+    along the intermediate geometry [mm], s_i, s_j, midpoint (n, 3), normal, tangential [N], state. NaN where
+    a value is undefined (no element in contact, a loop covered by contact)."""
+    if isinstance(nodes, Simulation):
+        if contact is None:
+            contact = nodes.contact_elements()
+        nodes = nodes.centreline(beam)
+    if contact is None:
+        raise TypeError("contact: expected a dict of columns (contact_final.csv or Simulation.contact_elements())")
+    points, s = _centreline(nodes)
+    return _nodus.analyse_knot(points, s, _contact_columns(contact), tail_chord, min_spacing, min_loop_nodes)
+
+
+def tail_angle(points, arc_length, s_a, s_b, tail_chord=2.0):
+    """Angle [deg] between the tails leaving the knot [s_a, s_b] of the polyline `points` (n, 3) with
+    reference arc lengths `arc_length`: between the chords c(s_a) -> c(s_a - tail_chord) and c(s_b) ->
+    c(s_b + tail_chord). NaN for a chord of zero length."""
+    return _nodus.tail_angle(points, arc_length, s_a, s_b, tail_chord)
+
+
+def fit_circle(points):
+    """Radius [mm] of the least-squares circle through the 3-D points (n, 3): their plane by SVD, then the
+    algebraic (Kasa) fit in it. NaN for fewer than three points."""
+    return _nodus.fit_circle(points)
+
+
+def rod_radius(states, default_radius=0.1):
+    """The rod radius [mm] measured from contact tables: the median distance of the particles x_i from the
+    centreline at their abscissa, over `states` = [(nodes, contact), ...] (nodes as in knot_metrics);
+    `default_radius` when there is no contact element."""
+    centrelines = [tuple(_centreline(n)) for n, _ in states]
+    return _nodus.rod_radius(centrelines, [_contact_columns(c) for _, c in states], default_radius)

@@ -17,6 +17,7 @@
 
 #include "bindings.hpp"
 #include "interrupts.hpp"
+#include "nodus/analysis/knot.hpp"
 #include "nodus/beam/strain_measures.hpp"
 #include "nodus/output/contact_table.hpp"
 #include "nodus/output/logging.hpp"
@@ -317,6 +318,14 @@ void bind_simulation(py::module_& m) {
           py::arg("xi") = 0.0)
       .def("node_strains",
            [](const PySimulation& s) { return strain_table(s.sim().model().node_strains(s.sim().state())); })
+      .def(
+          "centreline",
+          [](const PySimulation& s, int beam, int segments) {
+            const analysis::Centreline c =
+                analysis::beam_centreline(s.sim().model(), s.sim().state(), beam, segments);
+            return py::make_tuple(rows3(c.points), vector_array(c.arc_length));
+          },
+          py::arg("beam") = 0, py::arg("segments_per_element") = 2)
       .def("contact_elements", [](const PySimulation& s) { return contact_arrays(s.sim()); })
       .def("zones", [](const PySimulation& s) { return zone_arrays(s.sim()); })
       .def("internal_energy",

@@ -3,8 +3,9 @@
 // known angle, midpoints on straight lines (the abscissa is the distance along them), zones with a known span
 // in contact, the gaps of hand-placed intervals, a loop of known radius and length between two crossings,
 // particles at a known distance from the axis; the contact table against the contact_final.csv text of the
-// same geometry; and the whole analysis against scripts/knot_report.py (an independent numpy implementation)
-// on the same numbers, when python3 with numpy and matplotlib is there.
+// same geometry; and the whole analysis against tests/analysis/knot_metrics_reference.py (an independent
+// numpy implementation: knot_report.py's before the metrics moved here) on the same numbers, when python3
+// with numpy is there.
 
 #include <gtest/gtest.h>
 
@@ -552,7 +553,8 @@ TEST(ContactTable, WithoutStatesHasNoForces) {
 }
 
 // ---------------------------------------------------------------------------------------------------------
-// Against scripts/knot_report.py on the same numbers
+// Against knot_metrics_reference.py (knot_report.py's numpy metrics before they moved here) on the same
+// numbers
 
 namespace fs = std::filesystem;
 
@@ -588,7 +590,7 @@ std::string exact(double v) {
 constexpr const char* kPythonProgram = R"(import importlib.util, sys
 from pathlib import Path
 import numpy as np
-spec = importlib.util.spec_from_file_location("knot_report", sys.argv[1])
+spec = importlib.util.spec_from_file_location("knot_metrics_reference", sys.argv[1])
 kr = importlib.util.module_from_spec(spec)
 spec.loader.exec_module(kr)
 folder = Path(sys.argv[2])
@@ -719,10 +721,10 @@ std::map<std::string, std::vector<double>> parse_python(const std::string& text)
   return ::testing::AssertionFailure() << what << ": C++ " << exact(cpp) << ", Python " << exact(py);
 }
 
-TEST(KnotReportPython, SameNumbersOnASyntheticKnot) {
+TEST(KnotMetricsPythonReference, SameNumbersOnASyntheticKnot) {
   int status = 0;
-  run_command(python() + " -c 'import numpy, matplotlib' > /dev/null 2>&1", status);
-  if (status != 0) GTEST_SKIP() << python() << " lacks numpy or matplotlib (scripts/setup.sh installs them)";
+  run_command(python() + " -c 'import numpy' > /dev/null 2>&1", status);
+  if (status != 0) GTEST_SKIP() << python() << " lacks numpy (scripts/setup.sh installs it)";
 
   char folder_template[] = "/tmp/nodus_knot_metrics_XXXXXX";
   ASSERT_NE(::mkdtemp(folder_template), nullptr);
@@ -730,7 +732,7 @@ TEST(KnotReportPython, SameNumbersOnASyntheticKnot) {
   const Dataset d = noisy_dataset();
   write_run_folder(d, folder);
   std::ofstream(folder / "program.py") << kPythonProgram;
-  const std::string script = std::string(NODUS_SOURCE_DIR) + "/scripts/knot_report.py";
+  const std::string script = std::string(NODUS_SOURCE_DIR) + "/tests/analysis/knot_metrics_reference.py";
   const std::string output =
       run_command("MPLCONFIGDIR='" + folder.string() + "' " + python() + " '" +
                       (folder / "program.py").string() + "' '" + script + "' '" + folder.string() + "' 2>&1",
