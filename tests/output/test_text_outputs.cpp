@@ -166,6 +166,50 @@ TEST(Progress, RemainingTimeExtrapolatesLoadTimeRate) {
   EXPECT_TRUE(std::isnan(remaining_seconds(10.0, 0.0, 0.0, 1.0)));
 }
 
+// The knot's branch: `release` puts 20 steps into 1 s of load time, `rest` 20 steps into 40 s. Every step
+// costing 1 s of wall time, the true time left after k steps is 40 - k s, whatever the stage.
+TEST(Progress, RemainingTimeCountsNominalStepsAcrossStages) {
+  RemainingTime left({1.0, 41.0}, {20, 20}, 0.0);
+  EXPECT_TRUE(std::isnan(left.seconds()));  // nothing measured yet
+  EXPECT_DOUBLE_EQ(left.units(0.5), 10.0);
+  EXPECT_DOUBLE_EQ(left.units(1.0), 20.0);
+  EXPECT_DOUBLE_EQ(left.units(21.0), 30.0);
+  EXPECT_DOUBLE_EQ(left.units(99.0), 40.0);
+  for (int k = 1; k <= 40; ++k) {
+    const double time = k <= 20 ? 0.05 * k : 1.0 + 2.0 * (k - 20);
+    left.step(time, 1.0);
+    EXPECT_NEAR(left.seconds(), 40.0 - k, 1e-9) << "after step " << k;
+    // The load-time extrapolation over the whole run is off by a factor of 21 after the first step.
+    if (k == 1) {
+      EXPECT_GT(remaining_seconds(k, 0.0, time, 41.0) / (40.0 - k), 20.0);
+    }
+  }
+  EXPECT_EQ(left.seconds(), 0.0);
+}
+
+TEST(Progress, RemainingTimeFollowsAChangeOfCostWithinItsWindow) {
+  // A stage of 100 steps over 1 s; the first 10 steps cost 1 s each, then 3 s each: the cost per step
+  // smoothed over RemainingTime::kWindow steps is c_n = 3 - 2 exp(-n / kWindow) after n steps at 3 s.
+  RemainingTime left({1.0}, {100}, 0.0);
+  for (int k = 1; k <= 10; ++k) left.step(0.01 * k, 1.0);
+  EXPECT_NEAR(left.seconds(), 90.0, 1e-9);
+  for (int n = 1; n <= 20; ++n) {
+    left.step(0.01 * (10 + n), 3.0);
+    const double cost = 3.0 - 2.0 * std::exp(-n / RemainingTime::kWindow);
+    EXPECT_NEAR(left.seconds(), cost * (90 - n), 1e-9 * (90 - n)) << n;
+  }
+}
+
+TEST(Progress, RemainingTimeOfARunStartedInsideAStage) {
+  // A resumed run: the first stage done, the second (10 steps over 10 s) half done.
+  RemainingTime left({1.0, 11.0}, {10, 10}, 6.0);
+  EXPECT_TRUE(std::isnan(left.seconds()));
+  left.step(7.0, 2.0);  // one nominal step in 2 s: 4 steps left
+  EXPECT_DOUBLE_EQ(left.seconds(), 8.0);
+  left.step(7.0, 1.0);  // no progress: no measurement
+  EXPECT_DOUBLE_EQ(left.seconds(), 8.0);
+}
+
 TEST(Progress, LineFormat) {
   ProgressInfo p;
   p.stage_name = "twist";
@@ -186,6 +230,8 @@ TEST(Progress, LineFormat) {
   EXPECT_NE(progress_line(p).find("remaining ~? s"), std::string::npos);
   p.time = 2.5;
   EXPECT_NE(progress_line(p).find("remaining ~2.5 s"), std::string::npos) << progress_line(p);
+  p.remaining_seconds = 123.4;  // RemainingTime's estimate, when given, is the one shown
+  EXPECT_NE(progress_line(p).find("remaining ~123 s"), std::string::npos) << progress_line(p);
 }
 
 TEST(Logging, DefaultLoggerWritesToStderr) {

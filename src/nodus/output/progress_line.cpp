@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <utility>
 
 #include <fmt/format.h>
 
@@ -16,8 +17,44 @@ double remaining_seconds(double elapsed_seconds, double start_time, double time,
   return std::max(0.0, elapsed_seconds) * left / done;
 }
 
+RemainingTime::RemainingTime(std::vector<double> stage_end_times, std::vector<int> stage_steps,
+                             double start_time)
+    : ends_(std::move(stage_end_times)), steps_(std::move(stage_steps)), time_(start_time) {}
+
+double RemainingTime::units(double time) const {
+  double u = 0.0, t0 = 0.0;
+  for (std::size_t s = 0; s < ends_.size(); ++s) {
+    const double duration = ends_[s] - t0;
+    const double fraction =
+        duration > 0.0 ? std::clamp((time - t0) / duration, 0.0, 1.0) : (time >= t0 ? 1.0 : 0.0);
+    u += steps_[s] * fraction;
+    t0 = ends_[s];
+  }
+  return u;
+}
+
+void RemainingTime::step(double time, double wall_seconds) {
+  const double du = units(time) - units(time_);
+  time_ = time;
+  if (!(du > 0.0) || !(wall_seconds >= 0.0)) return;
+  const double cost = wall_seconds / du;
+  if (std::isnan(cost_))
+    cost_ = cost;
+  else
+    cost_ += (1.0 - std::exp(-du / kWindow)) * (cost - cost_);
+}
+
+double RemainingTime::seconds() const {
+  const double left = (ends_.empty() ? 0.0 : units(ends_.back())) - units(time_);
+  if (left <= 1e-12) return 0.0;
+  return cost_ * left;
+}
+
 std::string progress_line(const ProgressInfo& info) {
-  const double remaining = remaining_seconds(info.elapsed_seconds, info.start_time, info.time, info.end_time);
+  const double remaining =
+      std::isnan(info.remaining_seconds)
+          ? remaining_seconds(info.elapsed_seconds, info.start_time, info.time, info.end_time)
+          : info.remaining_seconds;
   const std::string remaining_text = !std::isfinite(remaining) ? std::string("~? s")
                                      : remaining < 10          ? fmt::format("~{:.1f} s", remaining)
                                                                : fmt::format("~{:.0f} s", remaining);

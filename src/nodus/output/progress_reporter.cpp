@@ -15,12 +15,21 @@ ProgressReporter::ProgressReporter(double min_interval_seconds, std::string labe
 
 void ProgressReporter::on_start(const simulation::Simulation& sim) {
   start_ = Clock::now();
-  last_line_ = start_;
+  last_line_ = last_step_ = start_;
   start_time_ = sim.time();
+  std::vector<double> ends;
+  std::vector<int> steps;
+  for (std::size_t s = 0; s < sim.scenario().stages.size(); ++s) {
+    ends.push_back(sim.stage_end_time(static_cast<int>(s)));
+    steps.push_back(sim.scenario().stages[s].steps);
+  }
+  remaining_.emplace(std::move(ends), std::move(steps), start_time_);
 }
 
 void ProgressReporter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {
   const Clock::time_point now = Clock::now();
+  if (remaining_) remaining_->step(record.time, std::chrono::duration<double>(now - last_step_).count());
+  last_step_ = now;
   const double stage_end = sim.stage_end_time(record.stage);
   const bool last_of_stage = record.time >= stage_end - 1e-12 * std::max(1.0, std::abs(stage_end));
   if (!last_of_stage && std::chrono::duration<double>(now - last_line_).count() < min_interval_) return;
@@ -41,6 +50,7 @@ void ProgressReporter::on_step(const simulation::Simulation& sim, const simulati
   info.newton_iterations = record.newton_iterations;
   info.residual = record.residual;
   info.elapsed_seconds = std::chrono::duration<double>(now - start_).count();
+  if (remaining_) info.remaining_seconds = remaining_->seconds();
   spdlog::info("{}{}", label_, progress_line(info));
 }
 
