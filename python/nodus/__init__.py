@@ -32,7 +32,8 @@ strain_names = tuple(_nodus.strain_names)
 #: Names of the values of the `state` array of Simulation.contact_elements(): 0 open, 1 stick, 2 slip.
 contact_states = tuple(_nodus.contact_states)
 
-_MESSAGE = _re.compile(r"^(?P<file>.*?):(?:(?P<line>[0-9]+):)? (?P<key>[^:]*): expected (?P<expected>.*)$")
+_MESSAGE = _re.compile(
+    r"^(?P<file>.*?):(?:(?P<line>[0-9]+):)? (?P<key>[^:]*): expected (?P<expected>.*?)(?:, got (?P<got>.*))?$")
 
 
 def _error_field(name):
@@ -49,8 +50,8 @@ def _error_field(name):
 ScenarioError.__doc__ = (
     "Bad input: a scenario, a value, an output folder. A ValueError whose message is the command line's: "
     "'FILE:LINE: KEY: expected ..., got ...' for a file, '<dict>: KEY: expected ..., got ...' for a scenario "
-    "built from Python data. The parts are attributes: file, line (None for a dict), key, expected.")
-for _name in ("file", "line", "key", "expected"):
+    "built from Python data. The parts are attributes: file, line (None for a dict), key, expected, got.")
+for _name in ("file", "line", "key", "expected", "got"):
     setattr(ScenarioError, _name, _error_field(_name))
 
 
@@ -83,7 +84,8 @@ class Scenario:
     @property
     def path(self):
         """The file the scenario was read from, or None for one built from data."""
-        return self._core.path or None
+        path = self._core.path
+        return None if path in ("", "<dict>") else path
 
     @property
     def beams(self):
@@ -190,13 +192,14 @@ class Simulation:
         """Advances by `steps` converged load steps (fewer at the end of the run); returns the last step's
         record, or None if the run had already finished. callback(record) is called after each step; if it
         returns False the run stops there."""
-        self._sim.advance(max_steps=steps, callback=callback)
-        return self._sim.last_step
+        done = self._sim.advance(max_steps=steps, callback=callback)
+        return self._sim.last_step if done else None
 
     def run_stage(self, callback=None):
-        """Advances to the end of the current stage; returns its last step's record."""
-        self._sim.advance(to_stage_end=True, callback=callback)
-        return self._sim.last_step
+        """Advances to the end of the current stage; returns its last step's record (None if the run had
+        already finished)."""
+        done = self._sim.advance(to_stage_end=True, callback=callback)
+        return self._sim.last_step if done else None
 
     def run(self, callback=None):
         """Advances to the end of the run (every stage); returns the number of steps converged."""

@@ -13,6 +13,10 @@ namespace nodus::python {
 /// A scenario read and checked by the C++ reader, shared by the Python objects that use it.
 using ScenarioHandle = std::shared_ptr<scenario::Scenario>;
 
+/// The path of a scenario built from Python data: it names it in messages ("<dict>: KEY: expected ..."), and
+/// tells run() that there is no file for branch processes to read.
+inline constexpr const char* kDataLabel = "<dict>";
+
 /// ScenarioError, the YAML <-> Python conversions, the scenario reader, the key table
 /// (scenario_bindings.cpp).
 void bind_scenario(pybind11::module_& m);

@@ -45,7 +45,7 @@ void bind_run(py::module_& m) {
         request.stop_after_steps = stop_after_steps;
         // Branch processes read the scenario file: a scenario built in code has none and runs its branches
         // in this process, one at a time (the same results).
-        if (!scenario->path.empty()) request.branch_executable = executable;
+        if (!scenario->path.empty() && scenario->path != kDataLabel) request.branch_executable = executable;
         Interrupts interrupts;
         request.cancel = [&interrupts] { return interrupts.poll(); };
         run::Outcome outcome;

@@ -21,9 +21,6 @@ namespace py = pybind11;
 namespace nodus::python {
 namespace {
 
-/// The label of a scenario built from Python data, in messages.
-constexpr const char* kDataLabel = "<dict>";
-
 [[noreturn]] void data_error(const std::string& where, const std::string& expected, py::handle got) {
   throw scenario::ScenarioError(fmt::format(
       "{}: {}: expected {}, got {} ({})", kDataLabel, where.empty() ? "top level" : where, expected,
@@ -44,7 +41,8 @@ bool is_scalar_list(py::handle list) {
   return true;
 }
 
-void emit(YAML::Emitter& out, py::handle value, const std::string& where);
+constexpr int kMaxDepth = 32;
+void emit(YAML::Emitter& out, py::handle value, const std::string& where, int depth);
 
 /// Whether a dict is written on one line, in flow style ({at: 0.5, translation: [1, 0, 0]}): when its values
 /// are scalars or lists of scalars and the line stays within kFlowWidth characters, as a person would write
@@ -63,7 +61,7 @@ bool fits_one_line(py::handle dict, const std::string& where) {
   for (auto [key, item] : py::reinterpret_borrow<py::dict>(dict)) {
     if (!py::isinstance<py::str>(key)) return false;
     line << YAML::Key << key.cast<std::string>() << YAML::Value;
-    emit(line, item, where);
+    emit(line, item, where, 0);
   }
   line << YAML::EndMap;
   return line.good() && line.size() <= kFlowWidth;
@@ -73,9 +71,13 @@ bool fits_one_line(py::handle dict, const std::string& where) {
 /// they hold only scalars, as [x, y, z]), bool as true/false, int as is, float as Python's shortest repr
 /// that reads back to the same double, None as null, text as a string (quoted by the emitter where YAML
 /// would read it otherwise). numpy arrays and scalars go through tolist() / item().
-void emit(YAML::Emitter& out, py::handle value, const std::string& where) {
+void emit(YAML::Emitter& out, py::handle value, const std::string& where, int depth) {
+  // A scenario nests a few levels (branches[].stages[].motions.NAME.keyframes[].rotation); deeper data is a
+  // mistake, such as a list that contains itself.
+  if (depth > kMaxDepth)
+    data_error(where, fmt::format("data nested at most {} levels deep", kMaxDepth), value);
   if (py::hasattr(value, "tolist") && !py::isinstance<py::str>(value)) {
-    emit(out, value.attr("tolist")(), where);
+    emit(out, value.attr("tolist")(), where, depth + 1);
     return;
   }
   if (py::isinstance<py::dict>(value)) {
@@ -85,14 +87,14 @@ void emit(YAML::Emitter& out, py::handle value, const std::string& where) {
       if (!py::isinstance<py::str>(key)) data_error(where, "a key name (str)", key);
       const std::string name = key.cast<std::string>();
       out << YAML::Key << name << YAML::Value;
-      emit(out, item, where.empty() ? name : where + "." + name);
+      emit(out, item, where.empty() ? name : where + "." + name, depth + 1);
     }
     out << YAML::EndMap;
   } else if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
     if (is_scalar_list(value)) out << YAML::Flow;
     out << YAML::BeginSeq;
     int i = 0;
-    for (py::handle item : value) emit(out, item, fmt::format("{}[{}]", where, i++));
+    for (py::handle item : value) emit(out, item, fmt::format("{}[{}]", where, i++), depth + 1);
     out << YAML::EndSeq;
   } else if (py::isinstance<py::bool_>(value)) {
     out << (value.cast<bool>() ? "true" : "false");
@@ -109,7 +111,7 @@ void emit(YAML::Emitter& out, py::handle value, const std::string& where) {
   } else if (value.is_none()) {
     out << YAML::Null;
   } else if (py::hasattr(value, "item")) {
-    emit(out, value.attr("item")(), where);
+    emit(out, value.attr("item")(), where, depth + 1);
   } else {
     data_error(where, "a dict, list, number, bool, str or None", value);
   }
@@ -152,7 +154,7 @@ std::string to_yaml_text(py::handle data) {
   if (!py::isinstance<py::dict>(data)) data_error("", "a dict of the scenario's sections", data);
   YAML::Emitter out;
   out.SetIndent(2);
-  emit(out, data, "");
+  emit(out, data, "", 0);
   if (!out.good()) throw std::runtime_error("could not write the scenario as YAML: " + out.GetLastError());
   return std::string(out.c_str()) + "\n";
 }
@@ -166,19 +168,22 @@ std::string drop_line(const std::string& message) {
 
 ScenarioHandle from_data(py::handle data) {
   const std::string text = to_yaml_text(data);
-  try {
-    auto s = std::make_shared<scenario::Scenario>(scenario::parse_scenario(text, kDataLabel));
-    s->path.clear();
-    return s;
-  } catch (const scenario::ScenarioError& e) {
-    throw scenario::ScenarioError(drop_line(e.what()));
-  }
+  return std::make_shared<scenario::Scenario>(scenario::parse_scenario(text, kDataLabel));
 }
 
 }  // namespace
 
 void bind_scenario(py::module_& m) {
-  py::register_exception<scenario::ScenarioError>(m, "ScenarioError", PyExc_ValueError);
+  // ScenarioError as a ValueError; a message about a scenario built from data (by the reader, by validate, by
+  // the model or by run) loses the line numbers of the YAML text generated from the data (drop_line).
+  static py::exception<scenario::ScenarioError> error(m, "ScenarioError", PyExc_ValueError);
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const scenario::ScenarioError& e) {
+      error(drop_line(e.what()).c_str());
+    }
+  });
 
   py::class_<scenario::Scenario, std::shared_ptr<scenario::Scenario>>(
       m, "_Scenario", "A scenario as the C++ reader holds it.")

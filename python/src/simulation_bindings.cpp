@@ -252,7 +252,7 @@ void bind_simulation(py::module_& m) {
   m.attr("strain_names") = names;
   m.attr("contact_states") = std::vector<std::string>{"open", "stick", "slip"};
 
-  py::class_<PySimulation>(m, "_Simulation")
+  py::class_<PySimulation>(m, "_Simulation", "The stepping interface under nodus.Simulation (see there).")
       .def(py::init<const ScenarioHandle&>(), py::arg("scenario"))
       .def(
           "advance",
@@ -313,6 +313,7 @@ void bind_simulation(py::module_& m) {
       .def(
           "element_strains",
           [](const PySimulation& s, double xi) {
+            if (!(xi >= -1.0 && xi <= 1.0)) throw py::value_error("xi: expected a value in [-1, 1]");
             return strain_table(s.sim().model().element_strains(s.sim().state(), xi));
           },
           py::arg("xi") = 0.0)

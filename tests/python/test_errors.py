@@ -104,3 +104,21 @@ def test_out_folder_that_is_a_file_raises(tmp_path):
     assert target.read_text() == "kept\n"
     with pytest.raises(nodus.ScenarioError):
         nodus.run(EXAMPLES / "bend_and_release.yaml", target / "below", quiet=True)
+
+
+def test_data_that_contains_itself_is_refused():
+    d = nodus.Scenario.from_yaml(EXAMPLES / "bend_and_release.yaml").to_dict()
+    d["beams"].append(d["beams"])
+    with pytest.raises(nodus.ScenarioError) as error:
+        nodus.Scenario(d)
+    assert "nested at most" in str(error.value) and error.value.line is None
+
+
+def test_error_parts():
+    d = nodus.Scenario.from_yaml(EXAMPLES / "bend_and_release.yaml").to_dict()
+    d["materials"][0]["young_modulus"] = -4000
+    with pytest.raises(nodus.ScenarioError) as error:
+        nodus.Scenario(d)
+    e = error.value
+    assert (e.file, e.line, e.key, e.got) == ("<dict>", None, "materials[0].young_modulus", "-4000")
+    assert e.expected.startswith("a number > 0") and ", got" not in e.expected

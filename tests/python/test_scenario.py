@@ -90,9 +90,6 @@ def test_validate(tmp_path):
     assert "'left' and 'again'" in str(error.value)
 
 
-@pytest.mark.xfail(strict=True, reason="module bug: validate() of a Scenario built from a dict names the file "
-                   "'' and a line of the generated YAML (':36: conditions[3].dofs: ...'), not '<dict>: ...' "
-                   "(python/src/scenario_bindings.cpp from_data clears the path; validate keeps the lines)")
 def test_validate_of_a_dict_names_the_dict():
     d = nodus.Scenario.from_yaml(EXAMPLES / "tool_drag.yaml").to_dict()
     d["conditions"].append({"name": "again", "type": "clamp", "beam": "beam", "at": "start"})

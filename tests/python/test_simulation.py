@@ -176,14 +176,13 @@ def test_steps_and_callbacks(tmp_path):
     assert [r["stage"] for r in records] == stage_of_row
     assert [r["time"] for r in records] == pytest.approx([float(r["time"]) for r in expected], rel=1e-9)
     assert sim.finished and sim.stage is None and sim.steps == len(expected)
-    assert sim.run() == 0 and sim.run_stage()["step"] == sim.steps == len(expected)  # nothing left to do
+    assert sim.run() == 0 and sim.run_stage() is None and sim.step() is None  # nothing left to do
+    assert sim.last_step["step"] == sim.steps == len(expected)
     assert set(sim.reactions) == set(nodus.Scenario.from_yaml(path).conditions)
     np.testing.assert_allclose(sim.reactions["root"]["force"],
                                [float(expected[-1][f"root_f{a}"]) for a in "xyz"], rtol=1e-9, atol=1e-12)
 
 
-@pytest.mark.xfail(strict=True, reason="module bug: Simulation.step() of a finished run returns the last "
-                   "record, not None as its docstring says (python/nodus/__init__.py, Simulation.step)")
 def test_step_of_a_finished_run_returns_none():
     sim = nodus.Simulation(EXAMPLES / "bend_and_release.yaml")
     sim.run()
