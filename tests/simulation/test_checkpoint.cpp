@@ -150,6 +150,47 @@ TEST(Checkpoint, ResumedRunEqualsUninterrupted) {
   }
 }
 
+// The stepping of the Python module: a run stopped by RunOptions::stop_when or cancelled by
+// RunOptions::cancel (Ctrl-C) in the middle of a Newton solve keeps its last converged state, and further
+// calls of run() on the same Simulation end where one uninterrupted run ends.
+TEST(Checkpoint, StoppedOrCancelledRunGoesOnInTheSameSimulation) {
+  const scenario::Scenario s = scenario::parse_scenario(kScenario, "resume.yaml");
+  Simulation reference(s);
+  Recorder all;
+  ASSERT_TRUE(reference.run({&all}).converged);
+
+  Simulation sim(s);
+  Recorder records;
+  RunOptions to_stage_end;
+  to_stage_end.stop_when = [](const StepRecord& r) { return r.ends_stage; };
+  RunSummary first = sim.run({&records}, to_stage_end);
+  EXPECT_TRUE(first.interrupted);
+  EXPECT_FALSE(first.cancelled);
+  EXPECT_EQ(sim.progress().stage, 1);  // stage 0 done, stage 1 not begun
+  EXPECT_EQ(records.stage_ends, std::vector<int>{0});
+
+  // Cancelled after the third Newton iteration of the next solve: no step converged, the state is the one
+  // the stage ended with.
+  const Eigen::VectorXd before = sim.state();
+  const int steps_before = sim.steps();
+  int asked = 0;
+  RunOptions cancel;
+  cancel.cancel = [&asked] { return ++asked > 3; };
+  const RunSummary cancelled = sim.run({&records}, cancel);
+  EXPECT_TRUE(cancelled.cancelled);
+  EXPECT_TRUE(cancelled.interrupted);
+  EXPECT_EQ(cancelled.new_steps, 0);
+  EXPECT_EQ(sim.steps(), steps_before);
+  EXPECT_EQ((sim.state() - before).cwiseAbs().maxCoeff(), 0.0);
+
+  const RunSummary rest = sim.run({&records});
+  ASSERT_TRUE(rest.converged) << rest.failure;
+  EXPECT_EQ(records.finished, 1);
+  ASSERT_EQ(records.records.size(), all.records.size());
+  for (std::size_t i = 0; i < all.records.size(); ++i) expect_same(records.records[i], all.records[i]);
+  EXPECT_EQ((sim.state() - reference.state()).cwiseAbs().maxCoeff(), 0.0);
+}
+
 TEST(Checkpoint, EncodingRoundTrips) {
   const scenario::Scenario s = scenario::parse_scenario(kScenario, "resume.yaml");
   Simulation sim(s);

@@ -112,10 +112,10 @@ struct RunOptions {
   /// Stops the run after the converged step for which it returns true (between steps, as stop_after_steps
   /// does: a later run() goes on from there). Empty: never. The stepping interface of the Python module
   /// (Simulation.step, run_stage) rests on it.
-  std::function<bool(const StepRecord&)> stop_when;
+  std::function<bool(const StepRecord&)> stop_when = {};
   /// Asked after every Newton iteration and every converged step: true stops the run there, back at the last
   /// converged state (RunSummary::cancelled); Ctrl-C in Python. Empty: never.
-  std::function<bool()> cancel;
+  std::function<bool()> cancel = {};
 };
 
 class Simulation;
