@@ -80,7 +80,9 @@ def sweep_scenario(program, frictions, settle):
     if not settle:
         data["stages"] = [stage for stage in data["stages"] if stage["name"] != "settle"]
         release["from"] = data["stages"][-1]["name"]
-    data["branches"] = [dict(release, name=f"mu_{mu:.2f}", contact={"friction": mu}) for mu in frictions]
+    # Lowest friction first: that knot slides furthest and its release takes longest (at 150 elements, mu = 0.2
+    # took twice as long as 0.3 or 0.25), so that the others run beside it rather than after it.
+    data["branches"] = [dict(release, name=f"mu_{mu:.2f}", contact={"friction": mu}) for mu in sorted(frictions)]
     return nodus.Scenario(data)
 
 
