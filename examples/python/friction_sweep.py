@@ -65,8 +65,8 @@ _knot_report = _load("knot_report")
 
 def knot_metrics(folder, name, friction):
     """The knot_report.csv row (a dict: tail_angle_deg, loop_radius_mm, loop_length_mm, ...) of the final state
-    of the run in `folder`. Computed by scripts/knot_report.py's analyse() until the module has
-    nodus.knot_metrics; the switch is this one function."""
+    of the run in `folder`: scripts/knot_report.py reads the run's CSV files and its analyse() calls
+    nodus.knot_metrics (the C++ metrics of src/nodus/analysis/knot_metrics.hpp)."""
     row, _, _ = _knot_report.analyse(_knot_report.load_state(Path(folder), name, friction))
     return row
 
