@@ -12,120 +12,49 @@ from dataclasses import dataclass
 
 import numpy as np
 
-NODE_COLUMNS = ["s", "x", "y", "z"]  # numeric; also `beam`
-CONTACT_COLUMNS = ["zone", "zeta", "abscissa_i", "abscissa_j", "x_i", "y_i", "z_i", "x_j", "y_j", "z_j",
-                   "gap", "normal_force", "tangential_force"]  # numeric; also `state`
 TAIL_CHORD = 2.0          # mm, length along each tail of the chord giving its direction
 MIN_SPACING = 0.05        # mm, least element spacing for the contact coverage of the loop
 MIN_LOOP_NODES = 5        # nodes needed for the circle fit
 DEFAULT_RADIUS = 0.1      # mm, rod radius of Sect. 7.2 when it cannot be measured from the contact table
 
 
-class ReportError(Exception):
-    """A missing or unreadable input; reported as one line `knot_report: PATH: what`."""
-
-
 @dataclass
 class State:
-    """One knot state read from a run folder: the tightened state or a branch's final state."""
-    name: str                # `tightened` or the branch name
+    """One knot state read from a run folder."""
+    name: str
     friction: object         # float, or None when unknown
     nodes: dict              # column -> array, the rod's nodes sorted by s
     contact: dict            # column -> array, elements sorted by (zone, zeta)
     last_step: dict          # column -> value of the last row of steps.csv ({} if there is none)
 
-    @property
-    def label(self):
-        if self.name == "tightened":
-            return "tightened"
-        return f"mu = {self.friction:g}" if self.friction is not None else self.name
 
-
-def read_table(path, numeric, text):
-    """A CSV file as {column: array}, numeric columns as float arrays; checks that it has the columns
-    `numeric` (with numbers) and `text`."""
-    if not path.is_file():
-        raise ReportError(f"{path}: missing")
+def read_table(path):
+    """A CSV file as {column: array}: numbers as float arrays, text as object arrays."""
     with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        rows = list(reader)
-        header = reader.fieldnames or []
-    absent = [c for c in [*numeric, *text] if c not in header]
-    if absent:
-        raise ReportError(f"{path}: missing column(s) {', '.join(absent)}")
+        rows = list(csv.DictReader(f))
     table = {}
-    for column in header:
+    for column in rows[0] if rows else []:
         values = [row[column] for row in rows]
         try:
             table[column] = np.array(values, dtype=float)
         except ValueError:
             table[column] = np.array(values, dtype=object)
-    not_numbers = [c for c in numeric if table[c].dtype != float]
-    if not_numbers:
-        raise ReportError(f"{path}: column(s) {', '.join(not_numbers)} not numeric")
     return table
 
 
-def select(table, mask_or_order):
-    """The rows of a table picked by a boolean mask or an index array."""
-    return {k: v[mask_or_order] for k, v in table.items()}
-
-
-def read_nodes(path):
-    """The nodes of the rod (the beam named `rod`, else the first beam), sorted by s."""
-    nodes = read_table(path, NODE_COLUMNS, ["beam"])
-    beams = list(dict.fromkeys(nodes["beam"]))
-    if beams:
-        nodes = select(nodes, nodes["beam"] == ("rod" if "rod" in beams else beams[0]))
-    if len(nodes["s"]) < 2:
-        raise ReportError(f"{path}: fewer than two nodes")
-    return select(nodes, np.argsort(nodes["s"], kind="stable"))
-
-
-def tools_in_contact(nodes_path):
-    """The other beams with contact elements on the rod at the state of `nodes_path` (a stage-end table),
-    from its `_contact.csv` companion: [nodes of each, sorted by s]. Empty when there is no companion."""
-    contact_path = nodes_path.with_name(nodes_path.name.replace("_nodes.csv", "_contact.csv"))
-    if not contact_path.is_file():
-        return []
-    pairs = read_table(contact_path, [], ["beam_i", "beam_j"])
-    names = {b for i, j in zip(pairs["beam_i"], pairs["beam_j"]) if "rod" in (i, j) for b in (i, j)} - {"rod"}
-    nodes = read_table(nodes_path, NODE_COLUMNS, ["beam"])
-    tools = []
-    for name in sorted(names):
-        beam = select(nodes, nodes["beam"] == name)
-        if len(beam["s"]) >= 2:
-            tools.append(select(beam, np.argsort(beam["s"], kind="stable")))
-    return tools
-
-
-def read_contact(path):
-    """The contact elements sorted by (zone, zeta)."""
-    contact = read_table(path, CONTACT_COLUMNS, ["state"])
-    return select(contact, np.lexsort((contact["zeta"], contact["zone"])))
-
-
-def read_last_step(path):
-    """The numeric values of the last row of steps.csv as {column: value}; {} with a note if it has none."""
-    if not path.is_file():
-        print(f"note: {path} missing: no pull or stabilisation force")
-        return {}
-    with open(path, newline="") as f:
-        last = None
-        for last in csv.DictReader(f):
-            pass
-    values = {}
-    for column, text in (last or {}).items():
-        try:
-            values[column] = float(text)
-        except (TypeError, ValueError):
-            pass
-    return values
-
-
 def load_state(folder, name, friction):
-    return State(name, friction, read_nodes(folder / "final_nodes.csv"),
-                 read_contact(folder / "contact_final.csv"), read_last_step(folder / "steps.csv"))
+    """The nodes of the first beam sorted by s, the contact elements sorted by (zone, zeta), and the numbers of
+    the last row of steps.csv (if there is one) of the run in `folder`."""
+    nodes = read_table(folder / "final_nodes.csv")
+    nodes = {k: v[nodes["beam"] == nodes["beam"][0]] for k, v in nodes.items()}
+    nodes = {k: v[np.argsort(nodes["s"], kind="stable")] for k, v in nodes.items()}
+    contact = read_table(folder / "contact_final.csv")
+    contact = {k: v[np.lexsort((contact["zeta"], contact["zone"]))] for k, v in contact.items()}
+    last_step = {}
+    if (folder / "steps.csv").is_file():
+        steps = read_table(folder / "steps.csv")
+        last_step = {k: float(v[-1]) for k, v in steps.items() if v.dtype == float and len(v)}
+    return State(name, friction, nodes, contact, last_step)
 
 
 def centreline(nodes, s):
