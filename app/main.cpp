@@ -18,9 +18,12 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <string>
 #include <thread>
+
+#include <unistd.h>
 
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
@@ -36,6 +39,20 @@ namespace {
 
 constexpr int kBadInput = 2;
 constexpr int kNotConverged = 3;
+
+/// OpenMP threads that wait for work by spinning (libgomp's default, for nodus's parallel regions and the
+/// OpenMP OpenBLAS under CHOLMOD alike) keep their cores busy between regions; when another process wants one
+/// of those cores, both crawl: a 27-fibre factorisation took 12.0 s instead of 2.65 s (docs/performance.md).
+/// libgomp reads OMP_WAIT_POLICY once, when it is loaded, before main(): so, unless the user has set it (to
+/// anything), nodus sets it to PASSIVE and starts itself again. Returns whether it was set here (or true if
+/// the exec failed and the default stays in force, which is only slower).
+bool prefer_passive_openmp_wait(char** argv) {
+  if (std::getenv("OMP_WAIT_POLICY") != nullptr) return std::getenv("NODUS_SET_OMP_WAIT_POLICY") != nullptr;
+  if (::setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0 || ::setenv("NODUS_SET_OMP_WAIT_POLICY", "1", 1) != 0)
+    return false;
+  ::execv("/proc/self/exe", argv);
+  return true;  // not reached unless the exec failed: go on with libgomp's default
+}
 
 /// `nodus knot`: the knot type and the smallest self-distance of a beam's centreline in a nodal table.
 int knot(const std::string& path, const std::string& beam, double separation) {
@@ -57,6 +74,7 @@ int knot(const std::string& path, const std::string& beam, double separation) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  const bool passive_wait_set_here = prefer_passive_openmp_wait(argv);
   nodus::output::use_stderr_logger();
   CLI::App app{"nodus: contact-friction mechanics of elastic beam assemblies (units: mm, N, MPa, s)"};
   app.require_subcommand(1);
@@ -116,6 +134,9 @@ int main(int argc, char** argv) {
     return code == 0 ? 0 : kBadInput;
   }
   if (verbose) spdlog::set_level(spdlog::level::debug);
+  const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
+  spdlog::debug("OpenMP wait policy: OMP_WAIT_POLICY={}{}", wait_policy ? wait_policy : "(unset)",
+                passive_wait_set_here ? " (set by nodus)" : "");
   request.verbose = verbose;
 
   try {

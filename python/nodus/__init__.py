@@ -18,8 +18,14 @@ import copy as _copy
 import os as _os
 import re as _re
 
-from . import _nodus
-from ._nodus import ScenarioError, RunOutcome
+# OpenMP threads that wait by spinning slow everything down when another process wants their core (a 27-fibre
+# factorisation 4.5x, docs/performance.md). libgomp reads the policy when it is loaded, which for most programs
+# is with the extension below; if numpy (with Debian's OpenMP OpenBLAS) was imported first, it is already
+# fixed. The user's own setting wins.
+_os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
+
+from . import _nodus  # noqa: E402  (after the wait policy)
+from ._nodus import ScenarioError, RunOutcome  # noqa: E402
 
 __version__ = _nodus.version
 

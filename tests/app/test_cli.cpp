@@ -80,3 +80,22 @@ TEST(Cli, GoodScenarioWritesEveryResult) {
 }
 
 }  // namespace
+
+// OpenMP threads wait passively unless the user has chosen (app/main.cpp: nodus sets OMP_WAIT_POLICY and
+// starts itself again, since libgomp reads it before main).
+TEST(Cli, OpenMpThreadsWaitPassivelyUnlessTheUserChose) {
+  const fs::path scenario = write("wait_policy.yaml", nodus::testing::kDrag);
+  const auto policy_line = [&](const std::string& environment) {
+    const fs::path err = scratch() / "wait_policy.txt";
+    const std::string cmd = "env -u OMP_WAIT_POLICY -u NODUS_SET_OMP_WAIT_POLICY " + environment + " " +
+                            NODUS_BINARY + " run " + scenario.string() + " --out " +
+                            (scratch() / "wait_policy").string() +
+                            " --quiet --verbose --stop-after-steps 1 2> " + err.string() + " > /dev/null";
+    EXPECT_NE(std::system(cmd.c_str()), -1);
+    const std::string text = nodus::testing::read_file(err);
+    const std::size_t at = text.find("OpenMP wait policy:");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(policy_line(""), "OpenMP wait policy: OMP_WAIT_POLICY=PASSIVE (set by nodus)");
+  EXPECT_EQ(policy_line("OMP_WAIT_POLICY=ACTIVE"), "OpenMP wait policy: OMP_WAIT_POLICY=ACTIVE");
+}
