@@ -44,14 +44,17 @@ constexpr int kNotConverged = 3;
 /// OpenMP OpenBLAS under CHOLMOD alike) keep their cores busy between regions; when another process wants one
 /// of those cores, both crawl: a 27-fibre factorisation took 12.0 s instead of 2.65 s (docs/performance.md).
 /// libgomp reads OMP_WAIT_POLICY once, when it is loaded, before main(): so, unless the user has set it (to
-/// anything), nodus sets it to PASSIVE and starts itself again. Returns whether it was set here (or true if
-/// the exec failed and the default stays in force, which is only slower).
+/// anything), nodus sets it to PASSIVE and starts itself again. Returns whether it was set here. (Profilers
+/// such as valgrind follow the exec only with --trace-children=yes: set OMP_WAIT_POLICY before them.)
 bool prefer_passive_openmp_wait(char** argv) {
   if (std::getenv("OMP_WAIT_POLICY") != nullptr) return std::getenv("NODUS_SET_OMP_WAIT_POLICY") != nullptr;
   if (::setenv("OMP_WAIT_POLICY", "PASSIVE", 1) != 0 || ::setenv("NODUS_SET_OMP_WAIT_POLICY", "1", 1) != 0)
     return false;
   ::execv("/proc/self/exe", argv);
-  return true;  // not reached unless the exec failed: go on with libgomp's default
+  // Not reached unless the exec failed: libgomp keeps the policy it read at load, so say nothing was set.
+  ::unsetenv("OMP_WAIT_POLICY");
+  ::unsetenv("NODUS_SET_OMP_WAIT_POLICY");
+  return false;
 }
 
 /// `nodus knot`: the knot type and the smallest self-distance of a beam's centreline in a nodal table.

@@ -195,10 +195,12 @@ class Simulation:
         self._sim = _nodus._Simulation(self.scenario._core)
 
     def step(self, steps=1, callback=None):
-        """Advances by `steps` converged load steps (fewer at the end of the run); returns the last step's
-        record, or None if the run had already finished. callback(record) is called after each step; if it
-        returns False the run stops there."""
-        done = self._sim.advance(max_steps=steps, callback=callback)
+        """Advances by `steps` (>= 1) converged load steps (fewer at the end of the run); returns the last
+        step's record, or None if no step converged (the run had finished, or failed: see failure).
+        callback(record) is called after each step; if it returns False the run stops there."""
+        if int(steps) < 1:
+            raise ValueError(f"steps: expected at least 1, got {steps}")
+        done = self._sim.advance(max_steps=int(steps), callback=callback)
         return self._sim.last_step if done else None
 
     def run_stage(self, callback=None):
@@ -284,7 +286,9 @@ class Simulation:
         """The contact elements of the last converged state as a dict of arrays, one row per element in the
         order of contact_final.csv: zone, beam_i, beam_j, element_i, element_j, zeta, abscissa_i, abscissa_j
         [mm], position_i, position_j, intermediate, normal (n, 3), gap [mm], normal_force R_N [N],
-        friction_force (n, 3) on beam J [N], tangential_force |T| [N], state (0 open, 1 stick, 2 slip)."""
+        friction_force (n, 3) on beam J [N], tangential_force |T| [N], state (0 open, 1 stick, 2 slip).
+        Without contact forces (contact.forces: false, or before the first step) the forces are NaN and the
+        state -1, as contact_final.csv leaves them empty."""
         return self._sim.contact_elements()
 
     def zones(self):
@@ -322,13 +326,10 @@ def min_self_distance(points, arc_length, separation):
     return _nodus.min_self_distance(points, arc_length, separation)
 
 
-#: The constants of the knot metrics (scripts/knot_report.py's definitions): the chord along each tail that
-#: gives its direction [mm], the least contact-element spacing used for the contact coverage of the loop [mm],
-#: and the nodes needed for the circle fit of the loop.
-KNOT_DEFAULTS = {"tail_chord": 2.0, "min_spacing": 0.05, "min_loop_nodes": 5}
-
 
 def _centreline(nodes):
+    if isinstance(nodes, Simulation):
+        return nodes.centreline(0)
     if isinstance(nodes, tuple):
         return nodes
     if isinstance(nodes, dict):
@@ -356,7 +357,8 @@ def _contact_columns(contact):
 def knot_metrics(nodes, contact=None, *, beam=0, tail_chord=2.0, min_spacing=0.05, min_loop_nodes=5):
     """The metrics of a knot state (docs/knot.md; scripts/knot_report.py prints them):
 
-    nodes: a Simulation (then its beam `beam` and its contact elements are used), or (points (n, 3),
+    nodes: a Simulation (then its beam `beam` and all its contact elements are used, those with other beams
+        included, as knot_report.py uses the whole contact_final.csv), or (points (n, 3),
         arc_length (n,)) of the rod's nodes in order, or a dict with columns s, x, y, z (final_nodes.csv of one
         beam, sorted by s);
     contact: a dict of columns, one entry per contact element: Simulation.contact_elements() or the columns of
@@ -395,7 +397,9 @@ def fit_circle(points):
 
 def rod_radius(states, default_radius=0.1):
     """The rod radius [mm] measured from contact tables: the median distance of the particles x_i from the
-    centreline at their abscissa, over `states` = [(nodes, contact), ...] (nodes as in knot_metrics);
-    `default_radius` when there is no contact element."""
-    centrelines = [tuple(_centreline(n)) for n, _ in states]
-    return _nodus.rod_radius(centrelines, [_contact_columns(c) for _, c in states], default_radius)
+    centreline at their abscissa, over `states` = [(nodes, contact), ...] (nodes as in knot_metrics: a
+    Simulation gives its beam 0, and its contact elements when contact is None); `default_radius` when there
+    is no contact element."""
+    pairs = [(n, n.contact_elements() if c is None and isinstance(n, Simulation) else c) for n, c in states]
+    centrelines = [tuple(_centreline(n)) for n, _ in pairs]
+    return _nodus.rod_radius(centrelines, [_contact_columns(c) for _, c in pairs], default_radius)

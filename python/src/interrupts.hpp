@@ -8,6 +8,7 @@
 /// the run then stops at its last converged state and rethrow() raises that exception in the caller. An
 /// exception raised by a Python callback (a step callback) is kept the same way.
 
+#include <chrono>
 #include <memory>
 #include <optional>
 
@@ -20,6 +21,10 @@ class Interrupts {
   /// True once a signal handler or a callback raised. Call without the GIL (it takes it).
   bool poll() {
     if (error_) return true;
+    // At most every kPollSeconds: taking the GIL can wait for another Python thread's switch interval.
+    const auto now = std::chrono::steady_clock::now();
+    if (now - last_poll_ < std::chrono::duration<double>(kPollSeconds)) return false;
+    last_poll_ = now;
     pybind11::gil_scoped_acquire gil;
     if (PyErr_CheckSignals() != 0) error_.emplace();  // fetches KeyboardInterrupt (or the handler's error)
     return error_.has_value();
@@ -29,6 +34,10 @@ class Interrupts {
     if (!error_) error_.emplace(std::move(error));
   }
   bool pending() const { return error_.has_value(); }
+  /// Least wall time between two looks for pending signals [s]: Ctrl-C stops within about this much of the
+  /// end of a Newton iteration.
+  static constexpr double kPollSeconds = 0.05;
+
   /// Raises the kept error, if any (call with the GIL).
   void rethrow() {
     if (!error_) return;
@@ -39,6 +48,7 @@ class Interrupts {
 
  private:
   std::optional<pybind11::error_already_set> error_;
+  std::chrono::steady_clock::time_point last_poll_{};
 };
 
 }  // namespace nodus::python

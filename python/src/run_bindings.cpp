@@ -10,6 +10,7 @@
 #include "interrupts.hpp"
 #include "nodus/output/logging.hpp"
 #include "nodus/run/run.hpp"
+#include "nodus/scenario/fingerprint.hpp"
 
 namespace py = pybind11;
 
@@ -45,13 +46,37 @@ void bind_run(py::module_& m) {
         request.stop_after_steps = stop_after_steps;
         // Branch processes read the scenario file: a scenario built in code has none and runs its branches
         // in this process, one at a time (the same results).
-        if (!scenario->path.empty() && scenario->path != kDataLabel) request.branch_executable = executable;
+        if (!scenario->path.empty() && scenario->path != kDataLabel && jobs > 1 && !executable.empty()) {
+          // Branch processes read the file again: only if it still holds this scenario, branches included.
+          const auto everything = [](const scenario::Scenario& s) {
+            std::string text = scenario::state_fingerprint_text(s, static_cast<int>(s.stages.size()));
+            for (std::size_t b = 0; b < s.branches.size(); ++b) {
+              const scenario::Scenario part = scenario::branch_scenario(s, b);
+              text += s.branches[b].name + "\n" +
+                      scenario::state_fingerprint_text(part, static_cast<int>(part.stages.size()));
+            }
+            return text;
+          };
+          bool same = false;
+          try {
+            same = everything(scenario::read_scenario(scenario->path)) == everything(*scenario);
+          } catch (const scenario::ScenarioError&) {
+          }
+          if (same)
+            request.branch_executable = executable;
+          else
+            spdlog::warn("{} has changed since it was read: the branches run in this process, one at a time",
+                         scenario->path);
+        }
         Interrupts interrupts;
         request.cancel = [&interrupts] { return interrupts.poll(); };
         run::Outcome outcome;
-        {
+        try {
           py::gil_scoped_release release;
           outcome = run::run(*scenario, request);
+        } catch (...) {
+          interrupts.rethrow();  // a Ctrl-C (or a callback's error) comes first
+          throw;
         }
         interrupts.rethrow();
         return outcome;

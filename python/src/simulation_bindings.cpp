@@ -6,6 +6,7 @@
 /// taken before a step shows the state after it: copy (numpy.array(view)) to keep a state. Everything else
 /// is computed on request and returned as new arrays.
 
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -73,7 +74,7 @@ class CallbackObserver final : public simulation::StepObserver {
     if (callback_.is_none() || interrupts_.pending()) return;
     try {
       const py::object result = callback_(d);
-      if (!result.is_none() && !result.cast<bool>()) stop_ = true;
+      if (result.ptr() == Py_False) stop_ = true;  // False stops the run; anything else goes on
     } catch (py::error_already_set& e) {
       interrupts_.keep(std::move(e));
     }
@@ -105,8 +106,16 @@ class PySimulation {
   /// of steps converged.
   int advance(std::function<bool(const simulation::StepRecord&)> stop_when, int max_steps,
               const py::object& callback) {
-    if (!failure_.empty()) throw std::runtime_error("the run has stopped: " + failure_);
-    if (finished()) return 0;
+    if (finished()) return 0;  // every stage done, or the run failed (failure())
+    // The GIL is released while the run goes on: another thread, or the step callback, calling into this
+    // Simulation would read or change what the run is changing.
+    if (running_)
+      throw std::runtime_error("this Simulation is already running (from another thread or its callback)");
+    struct Running {
+      bool& flag;
+      explicit Running(bool& f) : flag(f) { flag = true; }
+      ~Running() { flag = false; }
+    } running(running_);
     output::use_stderr_logger();
     Interrupts interrupts;
     CallbackObserver observer(callback, interrupts, last_);
@@ -117,9 +126,12 @@ class PySimulation {
     };
     options.cancel = [&interrupts] { return interrupts.poll(); };
     simulation::RunSummary summary;
-    {
+    try {
       py::gil_scoped_release release;
       summary = sim_.run({&observer}, options);
+    } catch (...) {
+      interrupts.rethrow();  // a Ctrl-C (or a callback's error) comes first
+      throw;
     }
     interrupts.rethrow();
     if (!summary.interrupted && !summary.converged) failure_ = summary.failure;
@@ -141,6 +153,7 @@ class PySimulation {
   simulation::Simulation sim_;
   std::optional<py::dict> last_;
   std::string failure_;
+  bool running_ = false;  ///< advance() is under way (its GIL released)
 };
 
 template <class T>
@@ -166,7 +179,6 @@ py::dict contact_arrays(const simulation::Simulation& sim) {
   std::vector<int> zone, beam_i, beam_j, element_i, element_j, status;
   std::vector<double> zeta, abscissa_i, abscissa_j, gap, normal_force, tangential_force;
   std::vector<Eigen::Vector3d> position_i, position_j, normal, friction, intermediate;
-  std::vector<bool> slip;
   for (std::size_t k = 0; k < g.elements.size(); ++k) {
     const contact::ContactElement& e = g.elements[k];
     zone.push_back(e.zone);
@@ -182,11 +194,19 @@ py::dict contact_arrays(const simulation::Simulation& sim) {
     intermediate.push_back(e.intermediate);
     normal.push_back(e.normal);
     gap.push_back(e.gap);
-    const simulation::ContactState s = forces ? states[k] : simulation::ContactState{};
-    normal_force.push_back(s.normal_reaction);
-    friction.push_back(s.tangential);
-    tangential_force.push_back(s.tangential.norm());
-    status.push_back(static_cast<int>(output::contact_status(s)));
+    if (forces) {
+      const simulation::ContactState& s = states[k];
+      normal_force.push_back(s.normal_reaction);
+      friction.push_back(s.tangential);
+      tangential_force.push_back(s.tangential.norm());
+      status.push_back(static_cast<int>(output::contact_status(s)));
+    } else {  // no contact forces (contact.forces: false), or no converged step yet: as contact_final.csv
+      const double nan = std::numeric_limits<double>::quiet_NaN();
+      normal_force.push_back(nan);
+      friction.push_back(Eigen::Vector3d::Constant(nan));
+      tangential_force.push_back(nan);
+      status.push_back(-1);
+    }
   }
   py::dict d;
   d["zone"] = vector_array(zone);

@@ -98,4 +98,16 @@ TEST(Cli, OpenMpThreadsWaitPassivelyUnlessTheUserChose) {
   };
   EXPECT_EQ(policy_line(""), "OpenMP wait policy: OMP_WAIT_POLICY=PASSIVE (set by nodus)");
   EXPECT_EQ(policy_line("OMP_WAIT_POLICY=ACTIVE"), "OpenMP wait policy: OMP_WAIT_POLICY=ACTIVE");
+  // What libgomp itself read when it was loaded (OMP_DISPLAY_ENV makes it print its settings on stderr).
+  const auto libgomp_policy = [&](const std::string& environment) {
+    const fs::path err = scratch() / "wait_policy_libgomp.txt";
+    const std::string cmd = "env -u OMP_WAIT_POLICY -u NODUS_SET_OMP_WAIT_POLICY OMP_DISPLAY_ENV=TRUE " +
+                            environment + " " + NODUS_BINARY + " keys 2> " + err.string() + " > /dev/null";
+    EXPECT_NE(std::system(cmd.c_str()), -1);
+    const std::string text = nodus::testing::read_file(err);
+    const std::size_t at = text.rfind("OMP_WAIT_POLICY = ");
+    return at == std::string::npos ? std::string() : text.substr(at, text.find('\n', at) - at);
+  };
+  EXPECT_EQ(libgomp_policy(""), "OMP_WAIT_POLICY = 'PASSIVE'");
+  EXPECT_EQ(libgomp_policy("OMP_WAIT_POLICY=ACTIVE"), "OMP_WAIT_POLICY = 'ACTIVE'");
 }

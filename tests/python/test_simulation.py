@@ -134,9 +134,24 @@ def test_contact_arrays_equal_contact_final_csv(finished):
 
 def test_contact_has_forces_where_expected(finished):
     scenario, sim, out = finished
+    c = sim.contact_elements()
     if scenario.path is None:  # tool_drag_in_contact: the tool presses and drags with friction
-        c = sim.contact_elements()
         assert c["normal_force"].max() > 0 and c["tangential_force"].max() > 0
+    elif not scenario.to_dict().get("contact"):  # bend_and_release: no contact section
+        assert len(c["zone"]) == 0 and len(sim.zones()["beam_i"]) == 0
+    else:  # twisted_pair_detection: contact forces on, so every element has its force and state
+        assert len(c["zone"]) > 0 and np.isfinite(c["normal_force"]).all() and (c["state"] >= 0).all()
+
+
+def test_step_count_must_be_positive_and_a_running_simulation_is_not_reentered():
+    sim = nodus.Simulation(EXAMPLES / "bend_and_release.yaml")
+    with pytest.raises(ValueError):
+        sim.step(0)
+    assert sim.steps == 0
+    with pytest.raises(RuntimeError, match="already running"):
+        sim.step(callback=lambda record: sim.step())
+    assert sim.steps == 1  # the step that called back converged; the run stopped after it
+    assert sim.step()["step"] == 2
 
 
 def test_views_are_read_only_and_follow_the_run():
