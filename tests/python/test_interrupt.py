@@ -11,7 +11,7 @@ import textwrap
 import time
 
 import nodus
-from conftest import EXAMPLES, assert_same_outputs, run_cli
+from conftest import DRAG_WITH_BRANCHES, EXAMPLES, assert_same_outputs, run_cli
 
 PYTHON = "/usr/bin/python3"
 # A hang guard, not a timing check: the child is killed if it has not answered by then.
@@ -135,5 +135,44 @@ def test_ctrl_c_stops_nodus_run_and_resume_completes_it(tmp_path):
     assert 4 <= rows < total
 
     outcome = nodus.run(scenario, out, quiet=True, resume=True)
+    assert outcome.converged and not outcome.interrupted
+    assert_same_outputs(reference, out)
+
+
+def test_ctrl_c_stops_branch_processes_and_resume_completes_them(tmp_path):
+    """With jobs=2 the branches run in processes of the nodus executable: SIGINT to the Python process stops
+    them (SIGTERM, waited for), and resume=True ends with the files of a run never interrupted."""
+    data = nodus._nodus.yaml_to_data(DRAG_WITH_BRANCHES)
+    for branch in data["branches"]:
+        for stage in branch["stages"]:
+            stage["steps"] *= 100
+    data["output"] = {"checkpoint_every": 10, "vtk_every": 0, "contact_csv": False}
+    scenario = tmp_path / "branches.yaml"
+    nodus.Scenario(data).to_yaml(scenario)
+    reference = tmp_path / "reference"
+    run_cli("run", scenario, "--out", reference, "--quiet", "--jobs", "2", check_status=0)
+    out = tmp_path / "python"
+    process = child(f"""
+        import signal
+        import nodus
+        signal.signal(signal.SIGINT, signal.default_int_handler)
+        try:
+            nodus.run({str(scenario)!r}, {str(out)!r}, quiet=True, jobs=2)
+            print("finished")
+        except KeyboardInterrupt:
+            print("interrupted")
+    """, tmp_path)
+    branch_steps = [out / "branches" / b["name"] / "steps.csv" for b in data["branches"]]
+
+    def started():  # both branch processes have written steps
+        return all(p.exists() and len(p.read_text().splitlines()) >= 12 for p in branch_steps)
+    stdout, err, _ = interrupt(process, started)
+    assert process.returncode == 0, err
+    assert stdout.strip() == "interrupted"
+    assert not (out / "summary.json").exists()
+    # No branch process outlives the run (they were waited for).
+    left = subprocess.run(["pgrep", "-f", f"--out {out}"], capture_output=True, text=True).stdout.split()
+    assert left == []
+    outcome = nodus.run(scenario, out, quiet=True, resume=True, jobs=2)
     assert outcome.converged and not outcome.interrupted
     assert_same_outputs(reference, out)
