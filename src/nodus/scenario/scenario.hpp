@@ -95,9 +95,49 @@ inline std::span<const Key<BeamSpec>> BeamSpec::keys() {
   return keys;
 }
 
+/// One cross-section of a beam: the beam and its local node (start = 0, end = 2 elements).
+struct SectionRef {
+  int beam = 0;  ///< index into Scenario::beams
+  int node = 0;  ///< local node index on the beam
+};
+
+/// A rigid body bound to fibre end sections by averaged kinematic conditions (docs/bodies.md): six unknowns,
+/// the position c of its reference point [mm] (in the reference state the mean of the bound section centres)
+/// and its rotation vector theta [rad]. Conditions that name it in `bodies` prescribe, load or release it;
+/// without any it is free.
+struct BodySpec {
+  std::string name;
+  std::vector<SectionRef> sections;  ///< the bound sections, at least one, none twice
+  double penalty = 0.0;  ///< factor of the penalty of the averaged conditions over E A / h [-], auto if <= 0
+  int line = 0;          ///< line of the body in the file (for messages)
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<BodySpec>> keys();
+};
+
+inline std::span<const Key<BodySpec>> BodySpec::keys() {
+  using K = Key<BodySpec>;
+  static const K keys[] = {
+      K::doc("bodies[].name", KeyType::string, "", "required", "unique among bodies and conditions",
+             "name by which conditions refer to the body"),
+      K::doc("bodies[].beams", KeyType::list, "", "required", "of beam names, non-empty, each beam once",
+             "the fibres whose end sections the body binds"),
+      K::doc("bodies[].at", KeyType::choice, "", "required", "start | end",
+             "which end section of each of those beams the body binds"),
+      K::real("bodies[].penalty", &BodySpec::penalty, "", "> 0 or auto", ranges::positive,
+              "stiffness of the averaged conditions as a multiple of E A / h of the bound fibres (h "
+              "the element length); the error it leaves is written to steps.csv. auto: 1e4")
+          .or_auto(),
+  };
+  return keys;
+}
+
 /// Index of the nine nodal unknowns: centre r, then directors g1 and g2.
 enum Dof : int { kX = 0, kY, kZ, kG1x, kG1y, kG1z, kG2x, kG2y, kG2z };
 using DofMask = std::array<bool, 9>;
+/// Index of a rigid body's six unknowns: its reference point, then its rotation vector.
+enum BodyDof : int { kBodyX = 0, kBodyY, kBodyZ, kBodyRx, kBodyRy, kBodyRz };
+using BodyDofMask = std::array<bool, 6>;
 
 enum class ConditionType {
   clamp,   ///< the selected dofs keep the values they have when the condition is activated
@@ -110,9 +150,13 @@ enum class ConditionType {
 struct ConditionSpec {
   std::string name;
   ConditionType type = ConditionType::clamp;
-  int beam = 0;                  ///< index into Scenario::beams
-  int node = 0;                  ///< local node index on the beam, resolved from "at" (start = 0, end = 2n)
-  DofMask dofs{};                ///< clamp and motion: the constrained dofs (default: all nine)
+  int beam = 0;    ///< index into Scenario::beams
+  int node = 0;    ///< local node index on the beam, resolved from "at" (start = 0, end = 2n)
+  DofMask dofs{};  ///< clamp and motion: the constrained dofs (default: all nine)
+  /// Indices into Scenario::bodies: the condition acts on these rigid bodies instead of a beam section (one
+  /// body for a load). Their unknowns are then x, y, z of the reference point and the rotation vector.
+  std::vector<int> bodies;
+  BodyDofMask body_dofs{};       ///< clamp and motion of bodies: the constrained unknowns (default: all six)
   bool initially_active = true;  ///< active from the first stage on, unless false
   Vec3 force = Vec3::Zero();     ///< load: initial force [N]
   Vec3 moment = Vec3::Zero();    ///< load: initial moment [N mm]
@@ -551,6 +595,7 @@ struct Scenario {
   std::string path;  ///< the file it was read from
   std::vector<Material> materials;
   std::vector<BeamSpec> beams;
+  std::vector<BodySpec> bodies;
   std::vector<ConditionSpec> conditions;
   std::vector<StageSpec> stages;
   SolverSettings solver;
@@ -576,6 +621,8 @@ inline std::span<const Key<Scenario>> Scenario::keys() {
       K::doc("materials", KeyType::list, "", "required", "non-empty", "the isotropic elastic materials"),
       K::doc("beams", KeyType::list, "", "required", "non-empty",
              "the beams, each straight in its reference configuration"),
+      K::doc("bodies", KeyType::list, "", "[]", "",
+             "rigid bodies, each bound to fibre end sections by averaged conditions (docs/bodies.md)"),
       K::doc("conditions", KeyType::list, "", "[]", "",
              "named boundary conditions, each on one cross-section"),
       K::doc("stages", KeyType::list, "", "required", "non-empty", "the loading program, run in order"),
