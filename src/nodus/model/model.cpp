@@ -1,5 +1,6 @@
 #include "nodus/model/model.hpp"
 
+#include <algorithm>
 #include <array>
 #include <stdexcept>
 
@@ -32,6 +33,34 @@ int Model::add_unknowns(std::span<const DofKind> kinds, const Eigen::VectorXd& i
   reference_.conservativeResize(dofs_.num_dofs());
   reference_.tail(initial.size()) = initial;
   return block;
+}
+
+int Model::add_body(std::string name, std::vector<int> nodes) {
+  if (nodes.empty()) throw std::invalid_argument("Model::add_body: body '" + name + "' binds no section");
+  std::vector<int> sorted = nodes;
+  std::sort(sorted.begin(), sorted.end());
+  if (std::adjacent_find(sorted.begin(), sorted.end()) != sorted.end())
+    throw std::invalid_argument("Model::add_body: body '" + name + "' binds a section twice");
+  RigidBody body;
+  body.name = std::move(name);
+  for (int node : nodes) {
+    if (node < 0 || node >= num_nodes_) throw std::out_of_range("Model::add_body: no such node");
+    body.reference_point += reference_.segment<3>(node_dof(node));
+  }
+  body.reference_point /= static_cast<double>(nodes.size());
+  body.nodes = std::move(nodes);
+  Eigen::VectorXd initial = Eigen::VectorXd::Zero(6);
+  initial.head<3>() = body.reference_point;
+  body.block = add_unknowns(kBodyKinds, initial);
+  bodies_.push_back(std::move(body));
+  return static_cast<int>(bodies_.size()) - 1;
+}
+
+int Model::node_beam(int node) const {
+  const auto it = std::upper_bound(beams_.begin(), beams_.end(), node,
+                                   [](int n, const beam::Beam& b) { return n < b.first_node(); });
+  if (it == beams_.begin() || node >= num_nodes_) throw std::out_of_range("Model::node_beam: no such node");
+  return static_cast<int>(it - beams_.begin()) - 1;
 }
 
 std::vector<std::vector<int>> Model::element_nodes() const {

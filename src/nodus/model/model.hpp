@@ -5,6 +5,7 @@
 /// other unknowns were added (add_unknowns). The displacement is the difference to `reference()`.
 
 #include <span>
+#include <string>
 #include <vector>
 
 #include <Eigen/Core>
@@ -23,6 +24,20 @@ inline constexpr DofKind kBeamNodeKinds[beam::kNodeDofs] = {
     DofKind::position, DofKind::position, DofKind::position, DofKind::director, DofKind::director,
     DofKind::director, DofKind::director, DofKind::director, DofKind::director};
 
+/// What the six unknowns of a rigid body measure: its reference point c, then its rotation vector theta.
+inline constexpr DofKind kBodyKinds[6] = {DofKind::position, DofKind::position, DofKind::position,
+                                          DofKind::rotation, DofKind::rotation, DofKind::rotation};
+
+/// A rigid body: six unknowns (c, theta), bound to beam sections by averaged conditions
+/// (model/averaged_conditions_term.hpp). Its rotation is Q(theta) (model/rotation_vector.hpp).
+struct RigidBody {
+  std::string name;
+  int block = 0;                                              ///< its block of unknowns in dofs()
+  std::vector<int> nodes;                                     ///< the global nodes of the bound sections
+  Eigen::Vector3d reference_point = Eigen::Vector3d::Zero();  ///< c in the reference state: the mean of the
+                                                              ///< bound section centres [mm]
+};
+
 class Model {
  public:
   explicit Model(int gauss_points = 2, double fold_stiffness = 0.0)
@@ -34,6 +49,17 @@ class Model {
   /// Adds a block of unknowns of the given kinds, starting at `initial` in the reference state; returns the
   /// block's index in dofs().
   int add_unknowns(std::span<const DofKind> kinds, const Eigen::VectorXd& initial);
+
+  /// Adds a rigid body bound to the sections of global nodes `nodes` (at least one, none twice): a block of
+  /// six unknowns (kBodyKinds) starting at c = the mean of their reference centres and theta = 0; returns its
+  /// index in bodies(). After the beams.
+  int add_body(std::string name, std::vector<int> nodes);
+  const std::vector<RigidBody>& bodies() const { return bodies_; }
+  const RigidBody& body(int i) const { return bodies_.at(static_cast<std::size_t>(i)); }
+  /// The first of the six unknowns of body `i`.
+  int body_dof(int i) const { return dofs_.first(body(i).block); }
+  /// The beam that global node `node` belongs to.
+  int node_beam(int node) const;
 
   const std::vector<beam::Beam>& beams() const { return beams_; }
   const beam::Beam& beam(int i) const { return beams_.at(static_cast<std::size_t>(i)); }
@@ -90,6 +116,7 @@ class Model {
   int gauss_points_;
   double fold_stiffness_;
   std::vector<beam::Beam> beams_;
+  std::vector<RigidBody> bodies_;
   std::vector<beam::ElementProperties> properties_;  ///< one per beam
   std::vector<Element> elements_;
   std::vector<int> first_element_;  ///< per beam: global index of its first element

@@ -126,7 +126,7 @@ inline std::span<const Key<BodySpec>> BodySpec::keys() {
              "which end section of each of those beams the body binds"),
       K::real("bodies[].penalty", &BodySpec::penalty, "", "> 0 or auto", ranges::positive,
               "stiffness of the averaged conditions as a multiple of E A / h of the bound fibres (h "
-              "the element length); the error it leaves is written to steps.csv. auto: 1e4")
+              "the element length); the error it leaves is written to steps.csv. auto: 1e3")
           .or_auto(),
   };
   return keys;
