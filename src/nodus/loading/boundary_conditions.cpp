@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 #include <Eigen/Geometry>
 
+#include "nodus/model/rotation_vector.hpp"
 #include "nodus/solver/sparse_assembler.hpp"
 
 namespace nodus::loading {
@@ -17,6 +18,13 @@ Eigen::Matrix3d rotation_matrix(const Vec3& rotation_vector) {
   return Eigen::AngleAxisd(angle, rotation_vector / angle).toRotationMatrix();
 }
 
+/// The targets of a condition on beam nodes: block n is node n, its unknowns 9 n .. 9 n + 8.
+void node_targets(const std::vector<int>& nodes, std::vector<int>& blocks, std::vector<int>& first) {
+  blocks = nodes;
+  first.clear();
+  for (int n : nodes) first.push_back(beam::kNodeDofs * n);
+}
+
 }  // namespace
 
 int Conditions::add_motion(std::string name, int node, const DofMask& mask, std::optional<Vec3> pivot) {
@@ -24,6 +32,7 @@ int Conditions::add_motion(std::string name, int node, const DofMask& mask, std:
   item.name = std::move(name);
   item.kind = ConditionKind::motion;
   item.nodes = {node};
+  node_targets(item.nodes, item.blocks, item.first);
   item.mask = mask;
   item.given_pivot = pivot;
   items_.push_back(std::move(item));
@@ -37,6 +46,7 @@ int Conditions::add_rigid(std::string name, std::vector<int> nodes, std::optiona
   item.kind = ConditionKind::motion;
   item.rigid = true;
   item.nodes = std::move(nodes);
+  node_targets(item.nodes, item.blocks, item.first);
   item.mask.fill(true);
   item.given_pivot = pivot;
   items_.push_back(std::move(item));
@@ -49,11 +59,57 @@ int Conditions::add_load(std::string name, int node, const Vec3& force, const Ve
   item.name = std::move(name);
   item.kind = ConditionKind::load;
   item.nodes = {node};
+  node_targets(item.nodes, item.blocks, item.first);
   item.force.reset(0.0, force);
   item.moment.reset(0.0, moment);
   item.axis = moment_axis.normalized();
   items_.push_back(std::move(item));
   return size() - 1;
+}
+
+int Conditions::add_body_motion(std::string name, std::vector<BodyRef> bodies, const DofMask& mask,
+                                std::optional<Vec3> pivot) {
+  if (bodies.empty()) throw std::invalid_argument("add_body_motion: no bodies");
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::motion;
+  item.body = true;
+  for (const BodyRef& b : bodies) {
+    item.blocks.push_back(b.block);
+    item.first.push_back(b.dof);
+  }
+  item.mask = mask;
+  for (int d = 6; d < beam::kNodeDofs; ++d) item.mask[static_cast<std::size_t>(d)] = false;
+  item.given_pivot = pivot;
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+int Conditions::add_body_load(std::string name, BodyRef body, const Vec3& force, const Vec3& moment_axis,
+                              double moment) {
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::load;
+  item.body = true;
+  item.blocks = {body.block};
+  item.first = {body.dof};
+  item.force.reset(0.0, force);
+  item.moment.reset(0.0, moment);
+  item.axis = moment_axis.normalized();
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+Vec3 Conditions::body_moment(const Vec3& theta, const Vec3& f_theta) {
+  // A variation d theta turns the body by the spin omega = T d theta, [T e_k]x = (dQ/dtheta_k) Q^T; the
+  // work m . omega = f_theta . d theta gives f_theta = T^T m.
+  const model::RotationDerivatives d = model::rotation_derivatives(theta, false);
+  Eigen::Matrix3d t;
+  for (int k = 0; k < 3; ++k) {
+    const Eigen::Matrix3d w = d.first[static_cast<std::size_t>(k)] * d.q.transpose();
+    t.col(k) = Vec3(w(2, 1), w(0, 2), w(1, 0));
+  }
+  return t.transpose().partialPivLu().solve(f_theta);
 }
 
 ConditionState Conditions::state(int c) const {
@@ -75,9 +131,9 @@ ConditionState Conditions::state(int c) const {
 
 void Conditions::restore(int c, const ConditionState& state) {
   Item& item = at(c);
-  if (!state.anchors.empty() && state.anchors.size() != item.nodes.size())
-    throw std::invalid_argument(fmt::format("condition '{}': {} anchors restored for {} nodes", item.name,
-                                            state.anchors.size(), item.nodes.size()));
+  if (!state.anchors.empty() && state.anchors.size() != item.first.size())
+    throw std::invalid_argument(fmt::format("condition '{}': {} anchors restored for {} targets", item.name,
+                                            state.anchors.size(), item.first.size()));
   item.active = state.active;
   item.anchors = state.anchors;
   item.pivot = state.pivot;
@@ -103,12 +159,35 @@ void Conditions::anchor_moment(Item& item, const NodeVector& state) {
 void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   Item& item = at(c);
   item.active = true;
-  const NodeVector state = x.segment<beam::kNodeDofs>(beam::kNodeDofs * item.nodes.front());
+  if (item.body && item.kind == ConditionKind::load) {
+    // The moment turns a body-fixed vector e_b, normal to the axis at activation: e = Q(theta) e_b.
+    const Vec3 theta = x.segment<3>(item.first.front() + 3);
+    const Vec3 normal = item.axis.unitOrthogonal();
+    NodeVector anchor = NodeVector::Zero();
+    anchor.head<6>() = x.segment<6>(item.first.front());
+    anchor.segment<3>(6) = model::rotation_matrix(theta).transpose() * normal;
+    item.anchors = {anchor};
+    item.angle.emplace(item.axis, normal);
+    return;
+  }
+  const NodeVector state =
+      item.body ? NodeVector::Zero().eval() : x.segment<beam::kNodeDofs>(item.first.front()).eval();
   if (item.kind == ConditionKind::motion) {
     item.anchors.clear();
-    for (int node : item.nodes) item.anchors.push_back(x.segment<beam::kNodeDofs>(beam::kNodeDofs * node));
-    item.pivot =
-        item.given_pivot ? *item.given_pivot : item.anchors[item.anchors.size() / 2].head<3>().eval();
+    for (int first : item.first) {
+      NodeVector anchor = NodeVector::Zero();
+      anchor.head(width(item)) = x.segment(first, width(item));
+      item.anchors.push_back(anchor);
+    }
+    if (item.given_pivot) {
+      item.pivot = *item.given_pivot;
+    } else if (item.body) {
+      item.pivot.setZero();
+      for (const NodeVector& a : item.anchors)
+        item.pivot += a.head<3>() / static_cast<double>(item.anchors.size());
+    } else {
+      item.pivot = item.anchors[item.anchors.size() / 2].head<3>();
+    }
     item.translation.reset(time, Vec3::Zero());
     item.rotation.reset(time, Vec3::Zero());
     item.force.reset(time, Vec3::Zero());
@@ -119,9 +198,13 @@ void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   }
 }
 
-void Conditions::release(int c, double time, const NodeVector& reaction, double end_time) {
+void Conditions::release(int c, double time, const Eigen::VectorXd& residual, double end_time) {
   Item& item = at(c);
   if (item.rigid) throw std::logic_error("release of the rigid condition '" + item.name + "'");
+  if (item.body && item.first.size() > 1 && item.active && item.kind == ConditionKind::motion)
+    throw std::logic_error("release of the condition '" + item.name + "' on several bodies");
+  NodeVector reaction = NodeVector::Zero();
+  reaction.head(width(item)) = residual.segment(item.first.front(), width(item));
   if (item.active && item.kind == ConditionKind::motion) {
     // The support's generalised force on the unknowns it held (the force on the centre, and on the
     // directors the forces whose moment is the support's moment) acts on as a dead load that decreases to
@@ -172,14 +255,14 @@ std::vector<bool> Conditions::prescribed(int num_dofs) const {
   for (int c = 0; c < size(); ++c) {
     const Item& item = at(c);
     if (!item.active || item.kind != ConditionKind::motion) continue;
-    for (int node : item.nodes)
-      for (int d = 0; d < beam::kNodeDofs; ++d) {
-        if (!item.mask[d]) continue;
-        const auto dof = static_cast<std::size_t>(beam::kNodeDofs * node + d);
+    for (std::size_t k = 0; k < item.first.size(); ++k)
+      for (int d = 0; d < width(item); ++d) {
+        if (!item.mask[static_cast<std::size_t>(d)]) continue;
+        const auto dof = static_cast<std::size_t>(item.first[k] + d);
         if (owner[dof] >= 0)
-          throw std::runtime_error(
-              fmt::format("conditions '{}' and '{}' both prescribe unknown {} of node {}",
-                          at(owner[dof]).name, item.name, d, node));
+          throw std::runtime_error(fmt::format("conditions '{}' and '{}' both prescribe unknown {} of {} {}",
+                                               at(owner[dof]).name, item.name, d,
+                                               item.body ? "block" : "node", item.blocks[k]));
         owner[dof] = c;
         mask[dof] = true;
       }
@@ -188,9 +271,17 @@ std::vector<bool> Conditions::prescribed(int num_dofs) const {
 }
 
 NodeVector Conditions::prescribed_values(const Item& item, std::size_t k, double time) const {
-  const Eigen::Matrix3d q = rotation_matrix(item.rotation.at(time));
+  const Vec3 rotation = item.rotation.at(time);
+  const Eigen::Matrix3d q = rotation_matrix(rotation);
   const NodeVector& anchor = item.anchors[k];
   NodeVector v;
+  if (item.body) {
+    // theta counts whole turns: composed about one axis, the rotation vectors add.
+    const Vec3 theta0 = anchor.segment<3>(3);
+    v << item.pivot + item.translation.at(time) + q * (anchor.segment<3>(0) - item.pivot),
+        model::rotation_vector(q * model::rotation_matrix(theta0), theta0 + rotation), Vec3::Zero();
+    return v;
+  }
   v << item.pivot + item.translation.at(time) + q * (anchor.segment<3>(0) - item.pivot),
       q * anchor.segment<3>(3), q * anchor.segment<3>(6);
   return v;
@@ -199,10 +290,10 @@ NodeVector Conditions::prescribed_values(const Item& item, std::size_t k, double
 void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
   for (const Item& item : items_) {
     if (!item.active || item.kind != ConditionKind::motion) continue;
-    for (std::size_t k = 0; k < item.nodes.size(); ++k) {
+    for (std::size_t k = 0; k < item.first.size(); ++k) {
       const NodeVector v = prescribed_values(item, k, time);
-      for (int d = 0; d < beam::kNodeDofs; ++d)
-        if (item.mask[d]) x[beam::kNodeDofs * item.nodes[k] + d] = v[d];
+      for (int d = 0; d < width(item); ++d)
+        if (item.mask[static_cast<std::size_t>(d)]) x[item.first[k] + d] = v[d];
     }
   }
 }
@@ -215,11 +306,18 @@ bool Conditions::applies_load(const Item& item) {
 void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
   for (const Item& item : items_) {
     if (!applies_load(item)) continue;
-    const int base = beam::kNodeDofs * item.nodes.front();
+    const int base = item.first.front();
     f_ext.segment<3>(base) += item.force.at(time);
-    f_ext.segment<beam::kNodeDofs>(base) += item.director_force.at(time);
+    f_ext.segment(base, width(item)) += item.director_force.at(time).head(width(item));
     const double m = item.moment.at(time);
-    if (m != 0.0) {
+    if (m != 0.0 && item.body) {
+      // Work m psi(e), e = Q(theta) e_b: d psi / d theta_k = grad psi . (dQ/dtheta_k) e_b.
+      const Vec3 theta = x.segment<3>(base + 3), e_b = item.anchors.front().segment<3>(6);
+      const model::RotationDerivatives d = model::rotation_derivatives(theta, false);
+      const Vec3 grad = item.angle->gradient(d.q * e_b);
+      for (int k = 0; k < 3; ++k)
+        f_ext[base + 3 + k] += m * grad.dot(d.first[static_cast<std::size_t>(k)] * e_b);
+    } else if (m != 0.0) {
       const int v = base + 3 + 3 * item.director;
       f_ext.segment<3>(v) += m * item.angle->gradient(x.segment<3>(v));
     }
@@ -232,6 +330,21 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
     if (!applies_load(item)) continue;
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
+    if (item.body) {
+      const int base = item.first.front();
+      const Vec3 e_b = item.anchors.front().segment<3>(6);
+      const model::RotationDerivatives d = model::rotation_derivatives(x.segment<3>(base + 3));
+      const Vec3 e = d.q * e_b, grad = item.angle->gradient(e);
+      const Eigen::Matrix3d hess = item.angle->hessian(e);
+      Eigen::Matrix<double, 6, 6> k = Eigen::Matrix<double, 6, 6>::Zero();
+      for (std::size_t i = 0; i < 3; ++i)
+        for (std::size_t j = 0; j < 3; ++j)
+          k(3 + static_cast<int>(i), 3 + static_cast<int>(j)) =
+              -m * ((d.first[i] * e_b).dot(hess * (d.first[j] * e_b)) + grad.dot(d.second[i][j] * e_b));
+      const int blocks[1] = {item.blocks.front()};
+      assembler.add(blocks, k);
+      continue;
+    }
     const int v = beam::kNodeDofs * item.nodes.front() + 3 + 3 * item.director;
     Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs> k =
         Eigen::Matrix<double, beam::kNodeDofs, beam::kNodeDofs>::Zero();
@@ -242,16 +355,38 @@ void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
 }
 
 void Conditions::commit(const Eigen::VectorXd& x) {
-  for (Item& item : items_)
-    if (applies_load(item) && item.angle)
+  for (Item& item : items_) {
+    if (!applies_load(item) || !item.angle) continue;
+    if (item.body)
+      item.angle->commit(model::rotation_matrix(x.segment<3>(item.first.front() + 3)) *
+                         item.anchors.front().segment<3>(6));
+    else
       item.angle->commit(x.segment<3>(beam::kNodeDofs * item.nodes.front() + 3 + 3 * item.director));
+  }
 }
 
 SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd& x,
                                        const Eigen::VectorXd& residual) const {
   const Item& item = at(c);
-  const int base = beam::kNodeDofs * item.nodes.front();
+  const int base = item.first.front();
   SectionForce out;
+  if (item.body) {
+    if (applies_load(item)) {
+      const NodeVector f = item.director_force.at(time);
+      out.force = item.force.at(time) + f.segment<3>(0);
+      out.moment = item.moment.at(time) * item.axis + body_moment(x.segment<3>(base + 3), f.segment<3>(3));
+      return out;
+    }
+    if (!item.active) return out;
+    const Vec3 centre = item.pivot + item.translation.at(time);
+    for (int first : item.first) {
+      const Vec3 f = residual.segment<3>(first);
+      out.force += f;
+      out.moment += (x.segment<3>(first) - centre).cross(f) +
+                    body_moment(x.segment<3>(first + 3), residual.segment<3>(first + 3));
+    }
+    return out;
+  }
   if (applies_load(item)) {
     const NodeVector f = item.director_force.at(time);
     out.force = item.force.at(time) + f.segment<3>(0);

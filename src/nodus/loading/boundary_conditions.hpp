@@ -22,8 +22,15 @@ class SparseAssembler;
 
 namespace nodus::loading {
 
-/// Which of a beam node's nine unknowns (r, g1, g2) a condition prescribes.
+/// Which of a beam node's nine unknowns (r, g1, g2) a condition prescribes; for a rigid body, the first six
+/// entries: its point c, then its rotation vector theta.
 using DofMask = std::array<bool, beam::kNodeDofs>;
+
+/// A rigid body as a condition sees it: its block of six unknowns (c, theta) and the first of them.
+struct BodyRef {
+  int block = 0;
+  int dof = 0;
+};
 using NodeVector = Eigen::Matrix<double, beam::kNodeDofs, 1>;
 
 /// Force and moment that the supports (or loads) exert on a section [N, N mm], moment about its centre.
@@ -40,8 +47,10 @@ enum class ConditionKind { motion, load };
 /// restoring it into a Conditions built the same way continues the run exactly.
 struct ConditionState {
   bool active = false;
-  std::vector<NodeVector> anchors;  ///< per node, at activation
-  Vec3 pivot = Vec3::Zero();        ///< at activation [mm]
+  /// Per node (its nine unknowns) or body (c, theta and, for a load, the body-frame vector whose angle the
+  /// moment turns), at activation.
+  std::vector<NodeVector> anchors;
+  Vec3 pivot = Vec3::Zero();  ///< at activation [mm]
   Path<Vec3> translation{Vec3::Zero()};
   Path<Vec3> rotation{Vec3::Zero()};  ///< rotation vector [rad]
   Path<Vec3> force{Vec3::Zero()};
@@ -63,12 +72,26 @@ class Conditions {
   /// A load on global node `node`: force [N] and moment [N mm] at load time 0. The moment's axis is fixed:
   /// `moment_axis` (unit) for the whole run; its value is moment_axis * moment.
   int add_load(std::string name, int node, const Vec3& force, const Vec3& moment_axis, double moment);
+  /// A prescribed motion of the unknowns in `mask` (first six entries: c, theta) of one or more rigid bodies:
+  /// c(t) = p + u(t) + Q(t) (c(activation) - p), Q_body(t) = Q(t) Q_body(activation); `pivot` p [mm] (none:
+  /// the mean of the bodies' points c at activation). A clamp is a motion with no keyframes.
+  int add_body_motion(std::string name, std::vector<BodyRef> bodies, const DofMask& mask,
+                      std::optional<Vec3> pivot = std::nullopt);
+  /// A load on a rigid body: a dead force [N] on its point c and a moment [N mm] about the fixed axis
+  /// `moment_axis`, whose work is the moment times the body's angle about that axis (AxisAngle of a
+  /// body-fixed vector normal to it), so that it is conservative.
+  int add_body_load(std::string name, BodyRef body, const Vec3& force, const Vec3& moment_axis,
+                    double moment);
 
   int size() const { return static_cast<int>(items_.size()); }
   const std::string& name(int c) const { return at(c).name; }
   ConditionKind kind(int c) const { return at(c).kind; }
-  /// The node of a motion or load; the first node of a rigid condition.
+  /// The node of a motion or load; the first node of a rigid condition (beam sections only).
   int node(int c) const { return at(c).nodes.front(); }
+  /// Whether condition c acts on rigid bodies rather than beam sections.
+  bool on_bodies(int c) const { return at(c).body; }
+  /// The DofMap block of the (first) node or body condition c acts on.
+  int block(int c) const { return at(c).blocks.front(); }
   bool active(int c) const { return at(c).active; }
   /// The fixed axis of the moment of a load (unit); for a released motion, that of its ramped-down moment.
   const Vec3& moment_axis(int c) const { return at(c).axis; }
@@ -81,11 +104,12 @@ class Conditions {
   /// Switches condition c on at load time `time`; a motion is anchored at the current state of its section.
   void activate(int c, double time, const Eigen::VectorXd& x);
   /// Switches condition c off. A motion's support is not removed at once: it is replaced by the load it
-  /// exerts at `time` in state x (`reaction`: the nine out-of-balance forces f_int - f_ext at its node),
-  /// which then decreases linearly to zero at `end_time`, so that the release is quasi-static and controlled
-  /// by the stage's steps. That load is dead: a force on the centre and forces on the directors (whose
-  /// moment is the support's moment at `time`). A load simply stops.
-  void release(int c, double time, const NodeVector& reaction, double end_time);
+  /// exerts at `time` (`residual`: the out-of-balance forces f_int - f_ext over all unknowns, at its
+  /// unknowns the reactions), which then decreases linearly to zero at `end_time`, so that the release is
+  /// quasi-static and controlled by the stage's steps. That load is dead: a force on the centre and forces on
+  /// the directors (whose moment is the support's moment at `time`), or on a body's rotation vector. A load
+  /// simply stops.
+  void release(int c, double time, const Eigen::VectorXd& residual, double end_time);
 
   /// Adds a keyframe of a motion: translation [mm] and rotation vector [rad], cumulative since activation.
   void add_motion_keyframe(int c, double time, const Vec3& translation, const Vec3& rotation);
@@ -108,7 +132,8 @@ class Conditions {
 
   /// The force and moment of condition c on its section: for a motion, the reaction of the support, read from
   /// the out-of-balance forces `residual` = f_int - f_ext at the section's unknowns; for a load, the load.
-  /// For a rigid condition: the resultant on all its nodes, moment about the moved pivot p + u(t).
+  /// For a rigid condition: the resultant on all its nodes, moment about the moved pivot p + u(t). For
+  /// bodies: the resultant on the bodies, moment about the moved pivot (one body: its point c).
   SectionForce section_force(int c, double time, const Eigen::VectorXd& x,
                              const Eigen::VectorXd& residual) const;
 
@@ -116,10 +141,13 @@ class Conditions {
   struct Item {
     std::string name;
     ConditionKind kind = ConditionKind::motion;
-    std::vector<int> nodes;  ///< one node, or all the nodes of a rigid condition
+    std::vector<int> nodes;   ///< one node, or all the nodes of a rigid condition; empty for bodies
+    std::vector<int> blocks;  ///< per target (node or body): its DofMap block
+    std::vector<int> first;   ///< per target: its first unknown
     DofMask mask{};
     bool active = false;
     bool rigid = false;
+    bool body = false;  ///< the targets are rigid bodies (six unknowns: c, theta)
     // motion
     std::vector<NodeVector> anchors;  ///< per node, at activation
     std::optional<Vec3> given_pivot;
@@ -138,6 +166,10 @@ class Conditions {
   const Item& at(int c) const { return items_.at(static_cast<std::size_t>(c)); }
   Item& at(int c) { return items_.at(static_cast<std::size_t>(c)); }
   NodeVector prescribed_values(const Item& item, std::size_t k, double time) const;
+  /// The number of unknowns of each target: 9 (node) or 6 (body).
+  static int width(const Item& item) { return item.body ? 6 : beam::kNodeDofs; }
+  /// The moment [N mm] about a body's point of the generalised forces `f_theta` on its rotation vector.
+  static Vec3 body_moment(const Vec3& theta, const Vec3& f_theta);
   static void anchor_moment(Item& item, const NodeVector& state);
   /// Whether the item's force and moment act: an active load, or a released motion.
   static bool applies_load(const Item& item);

@@ -3,7 +3,7 @@
 namespace nodus::loading {
 
 void LoadTerm::couplings(std::vector<std::vector<int>>& groups) const {
-  for (int c = 0; c < conditions_.size(); ++c) groups.push_back({conditions_.node(c)});
+  for (int c = 0; c < conditions_.size(); ++c) groups.push_back({conditions_.block(c)});
 }
 
 void LoadTerm::add(const model::TermState& state, Eigen::VectorXd& residual,

@@ -13,7 +13,8 @@
 
 namespace nodus::output {
 
-std::string steps_csv_header(const std::vector<std::string>& condition_names) {
+std::string steps_csv_header(const std::vector<std::string>& condition_names,
+                             const std::vector<std::string>& body_names) {
   std::string header =
       "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
       "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
@@ -21,11 +22,14 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names) {
   for (const std::string& name : condition_names)
     for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz"})
       header += "," + csv_field(name + "_" + component);
+  for (const std::string& name : body_names)
+    for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz", "error"})
+      header += "," + csv_field(name + "_" + component);
   return header;
 }
 
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
-                          int num_conditions) {
+                          int num_conditions, int num_bodies) {
   fmt::memory_buffer row;
   fmt::format_to(std::back_inserter(row), "{},{},{:.10g},{},{},{:.10g},{:.10g},{},{}", record.step,
                  csv_field(stage_name), record.time, record.newton_iterations, record.cutbacks,
@@ -41,6 +45,16 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
                      s.force.y(), s.force.z(), s.moment.x(), s.moment.y(), s.moment.z());
     } else {
       fmt::format_to(std::back_inserter(row), ",,,,,,");
+    }
+  }
+  for (int b = 0; b < num_bodies; ++b) {
+    if (b < static_cast<int>(record.bodies.size())) {
+      const simulation::BodyRecord& s = record.bodies[static_cast<std::size_t>(b)];
+      fmt::format_to(std::back_inserter(row), ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}",
+                     s.force.x(), s.force.y(), s.force.z(), s.moment.x(), s.moment.y(), s.moment.z(),
+                     s.error);
+    } else {
+      fmt::format_to(std::back_inserter(row), ",,,,,,,");
     }
   }
   return fmt::to_string(row);
@@ -95,7 +109,9 @@ void StepsCsvWriter::on_start(const simulation::Simulation& sim) {
   file_ = nullptr;
   std::vector<std::string> names;
   for (int c = 0; c < sim.conditions().size(); ++c) names.push_back(sim.conditions().name(c));
-  const std::string header = steps_csv_header(names);
+  std::vector<std::string> bodies;
+  for (const model::RigidBody& b : sim.model().bodies()) bodies.push_back(b.name);
+  const std::string header = steps_csv_header(names, bodies);
   if (sim.start_kind() == simulation::StartKind::resumed) {
     std::string kept = header + "\n";
     if (std::ifstream in(path_, std::ios::binary); in) {
@@ -120,7 +136,8 @@ void StepsCsvWriter::on_step(const simulation::Simulation& sim, const simulation
   const std::string stage_name = record.stage >= 0 && record.stage < static_cast<int>(stages.size())
                                      ? stages[static_cast<std::size_t>(record.stage)].name
                                      : "";
-  write_line(steps_csv_row(record, stage_name, sim.conditions().size()));
+  write_line(steps_csv_row(record, stage_name, sim.conditions().size(),
+                           static_cast<int>(sim.model().bodies().size())));
 }
 
 void StepsCsvWriter::on_finish(const simulation::Simulation& /*sim*/,

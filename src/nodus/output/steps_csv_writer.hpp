@@ -16,8 +16,10 @@ namespace nodus::output {
 /// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment,zones,
 /// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
 /// stabilization_force,loops_converged,
-/// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order.
-std::string steps_csv_header(const std::vector<std::string>& condition_names);
+/// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order, then
+/// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error for each rigid body name in order.
+std::string steps_csv_header(const std::vector<std::string>& condition_names,
+                             const std::vector<std::string>& body_names = {});
 
 /// One data line (no line end) for `record`, the stage column holding `stage_name`; numbers with ten
 /// significant digits: time [s], residual [N], increment [-], penetration_ratio [-], forces [N], moments
@@ -25,9 +27,10 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names);
 /// `normal_iterations`, `penetration_ratio`, `normal_force` (sum of R_N), `tangential_force` (sum of |R_T|)
 /// and `slipping` are the record's contact-loop figures (0 without contact forces); `loops_converged` is 1 or
 /// 0 (1 without contact forces). Sections missing from the
-/// record (fewer than `num_conditions`) give empty fields.
+/// record (fewer than `num_conditions`) give empty fields, as do bodies (fewer than `num_bodies`): the force
+/// [N] and moment [N mm] each exerts on its sections, about its point, and its error [mm].
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
-                          int num_conditions);
+                          int num_conditions, int num_bodies = 0);
 
 /// `text` (a steps.csv) cut after the data line of step `last_step`: the header and the lines of the steps up
 /// to `last_step`, each with its line end (a quoted field may hold line breaks).

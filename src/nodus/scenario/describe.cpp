@@ -164,6 +164,29 @@ std::string describe(const Scenario& scenario) {
     });
   }
 
+  if (!scenario.bodies.empty()) line("bodies:");
+  for (const BodySpec& body : scenario.bodies) {
+    line(fmt::format("  - name: {}  # line {}", yaml_name(body.name), body.line));
+    describe_keys(out, BodySpec::keys(), body, "    ", [&](const Key<BodySpec>& key) {
+      const std::string_view leaf = leaf_name(key.path);
+      if (leaf == "beams") {
+        std::string names;
+        for (const SectionRef& section : body.sections)
+          names += (names.empty() ? "" : ", ") +
+                   yaml_name(scenario.beams.at(static_cast<std::size_t>(section.beam)).name);
+        line(fmt::format("    beams: [{}]", names));
+      }
+      if (leaf == "at")
+        line(fmt::format("    at: {}",
+                         !body.sections.empty() && body.sections.front().node == 0 ? "start" : "end"));
+      if (leaf == "penalty" && body.penalty <= 0.0) {
+        line("    penalty: auto  # 1e3");
+        return true;
+      }
+      return !key.scalar();
+    });
+  }
+
   if (scenario.conditions.empty()) {
     line("conditions: []");
   } else {
@@ -173,8 +196,27 @@ std::string describe(const Scenario& scenario) {
     const BeamSpec& beam = scenario.beams.at(condition.beam);
     line(fmt::format("  - name: {}  # line {}", yaml_name(condition.name), condition.line));
     const bool rigid = condition.type == ConditionType::rigid, load = condition.type == ConditionType::load;
+    const bool on_bodies = !condition.bodies.empty();
     describe_keys(out, ConditionSpec::keys(), condition, "    ", [&](const Key<ConditionSpec>& key) {
       const std::string_view leaf = leaf_name(key.path);
+      if (on_bodies && (leaf == "beam" || leaf == "at")) return true;
+      if (leaf == "bodies" && on_bodies) {
+        std::string names;
+        for (int b : condition.bodies)
+          names +=
+              (names.empty() ? "" : ", ") + yaml_name(scenario.bodies.at(static_cast<std::size_t>(b)).name);
+        line(fmt::format("    bodies: [{}]", names));
+      }
+      if (leaf == "dofs" && on_bodies) {
+        if (!load) {
+          constexpr const char* kNames[] = {"x", "y", "z", "rx", "ry", "rz"};
+          std::string dofs;
+          for (std::size_t d = 0; d < 6; ++d)
+            if (condition.body_dofs[d]) dofs += (dofs.empty() ? "" : ", ") + std::string(kNames[d]);
+          line(fmt::format("    dofs: [{}]", dofs));
+        }
+        return true;
+      }
       if (leaf == "beam") line(fmt::format("    beam: {}", yaml_name(beam.name)));
       if (leaf == "pivot" && condition.pivot)
         line(fmt::format("    pivot: {}  # mm", format_vec(*condition.pivot)));

@@ -105,6 +105,18 @@ std::string canonical_text(const Scenario& s) {
     out.line(at + ".direction", exact(beam.direction));
     out.line(at + ".director1", exact(beam.director1));
   }
+  // Bodies and conditions on bodies add lines only where they exist: the text of a scenario without them
+  // is what it was before bodies were added, so its checkpoints stay valid.
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodySpec& body = s.bodies[b];
+    const std::string at = fmt::format("bodies[{}]", b);
+    out.line(at + ".name", body.name);
+    out.keys(body, "bodies[]", at);
+    std::string sections;
+    for (const SectionRef& section : body.sections)
+      sections += fmt::format("{}{}:{}", sections.empty() ? "" : ",", section.beam, section.node);
+    out.line(at + ".sections", sections);
+  }
   for (std::size_t c = 0; c < s.conditions.size(); ++c) {
     const ConditionSpec& condition = s.conditions[c];
     const std::string at = fmt::format("conditions[{}]", c);
@@ -115,6 +127,12 @@ std::string canonical_text(const Scenario& s) {
     std::string dofs;
     for (bool d : condition.dofs) dofs += d ? '1' : '0';
     out.line(at + ".dofs", dofs);
+    if (!condition.bodies.empty()) {
+      out.line(at + ".bodies", list(condition.bodies));
+      std::string body_dofs;
+      for (bool d : condition.body_dofs) body_dofs += d ? '1' : '0';
+      out.line(at + ".body_dofs", body_dofs);
+    }
     out.line(at + ".force", exact(condition.force));
     out.line(at + ".moment", exact(condition.moment));
     out.line(at + ".pivot", condition.pivot ? exact(*condition.pivot) : std::string("none"));

@@ -102,7 +102,60 @@ std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const
   return beams;
 }
 
+std::vector<BodySpec> read_bodies(const Reader& reader, const MapView& top, const NameTable& beam_names,
+                                  const std::vector<BeamSpec>& beams, NameTable& names) {
+  std::vector<BodySpec> bodies;
+  const auto list = top.get("bodies");
+  if (!list) return bodies;
+  for (const Field& item : reader.list(*list, false)) {
+    const MapView map(reader, item);
+    BodySpec body;
+    body.line = map.line();
+    const Field name = map.require("name");
+    body.name = reader.name(name);
+    names.add(reader, name, body.name, "bodies");
+    read_keys(reader, map, BodySpec::keys(), body);
+    const Field at = map.require("at");
+    const std::string at_text = is_plain_scalar(at.node) ? at.node.Scalar() : std::string();
+    if (at_text != "start" && at_text != "end") reader.fail(at, "one of start | end");
+    std::vector<int> seen;
+    for (const Field& beam : reader.list(map.require("beams"), true)) {
+      const auto index = beam_names.find(beam.node.IsScalar() ? beam.node.Scalar() : std::string());
+      if (!index) reader.fail(beam, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
+      if (std::find(seen.begin(), seen.end(), *index) != seen.end())
+        reader.fail(beam, "each beam once in beams");
+      seen.push_back(*index);
+      body.sections.push_back(
+          {*index, at_text == "start" ? 0 : 2 * beams[static_cast<std::size_t>(*index)].elements});
+    }
+    bodies.push_back(body);
+  }
+  return bodies;
+}
+
 namespace {
+
+/// The six unknowns of a rigid body selected by a list of dof items (BodyDofMask).
+BodyDofMask read_body_dofs(const Reader& reader, const Field& field) {
+  BodyDofMask mask{};
+  constexpr std::string_view kNames[] = {"x", "y", "z", "rx", "ry", "rz"};
+  for (const Field& item : reader.list(field, true)) {
+    const std::string text = is_plain_scalar(item.node) ? item.node.Scalar() : std::string();
+    if (text == "all") {
+      mask.fill(true);
+    } else if (text == "position") {
+      mask[kBodyX] = mask[kBodyY] = mask[kBodyZ] = true;
+    } else if (text == "rotation") {
+      mask[kBodyRx] = mask[kBodyRy] = mask[kBodyRz] = true;
+    } else {
+      const auto* found = std::find(std::begin(kNames), std::end(kNames), text);
+      if (found == std::end(kNames))
+        reader.fail(item, "one of all | position | rotation | x | y | z | rx | ry | rz (on bodies)");
+      mask[static_cast<std::size_t>(found - std::begin(kNames))] = true;
+    }
+  }
+  return mask;
+}
 
 /// The nine dofs selected by a list of dof items.
 DofMask read_dofs(const Reader& reader, const Field& field) {
@@ -131,7 +184,8 @@ DofMask read_dofs(const Reader& reader, const Field& field) {
 
 std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& top,
                                            const NameTable& beam_names, const std::vector<BeamSpec>& beams,
-                                           NameTable& names, MomentAxes& moment_axes) {
+                                           const NameTable& body_names, NameTable& names,
+                                           MomentAxes& moment_axes) {
   std::vector<ConditionSpec> conditions;
   const auto list = top.get("conditions");
   if (!list) return conditions;
@@ -142,9 +196,64 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
     const Field name = map.require("name");
     condition.name = reader.name(name);
     names.add(reader, name, condition.name, "conditions");
+    if (const auto body = body_names.find(condition.name))
+      reader.fail(name, fmt::format("a name unique among conditions and bodies (already used at line {})",
+                                    body_names.index_and_line.at(condition.name).second));
 
     const std::span<const Key<ConditionSpec>> keys = ConditionSpec::keys();
     read_key(reader, map.require("type"), declared(keys, "conditions[].type"), condition);
+
+    if (const auto bodies = map.get("bodies")) {
+      if (condition.type == ConditionType::rigid)
+        reader.fail(*bodies,
+                    "no bodies on a rigid condition (bodies are for clamp, motion and load conditions)");
+      for (const char* key : {"beam", "at"})
+        if (const auto value = map.get(key))
+          reader.fail(*value, fmt::format("no {} next to bodies (the condition acts on the bodies)", key));
+      const std::vector<Field> items = reader.list(*bodies, true);
+      for (const Field& body : items) {
+        const auto index = body_names.find(body.node.IsScalar() ? body.node.Scalar() : std::string());
+        if (!index) reader.fail(body, fmt::format("the name of a body ({})", name_list(body_names.names)));
+        if (std::find(condition.bodies.begin(), condition.bodies.end(), *index) != condition.bodies.end())
+          reader.fail(body, "each body once in bodies");
+        if (condition.type == ConditionType::load && !condition.bodies.empty())
+          reader.fail(body, "one body for a load condition");
+        condition.bodies.push_back(*index);
+      }
+      const auto pivot = map.get("pivot");
+      if (pivot) {
+        if (condition.type != ConditionType::motion)
+          reader.fail(*pivot,
+                      fmt::format("no pivot on a {} condition (pivot is for motion and rigid conditions)",
+                                  type_name(condition.type)));
+        condition.pivot = reader.vec(*pivot);
+      }
+      const auto dofs = map.get("dofs");
+      if (condition.type == ConditionType::load) {
+        if (dofs)
+          reader.fail(*dofs, "no dofs on a load condition (dofs are for clamp and motion conditions)");
+      } else {
+        condition.body_dofs =
+            dofs ? read_body_dofs(reader, *dofs) : BodyDofMask{true, true, true, true, true, true};
+      }
+      if (const auto active = map.get("active"))
+        read_key(reader, *active, declared(keys, "conditions[].active"), condition);
+      for (const char* key : {"force", "moment"}) {
+        const auto value = map.get(key);
+        if (!value) continue;
+        if (condition.type != ConditionType::load)
+          reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
+                                          type_name(condition.type), key));
+        if (std::string_view(key) == "force") {
+          condition.force = reader.vec(*value);
+        } else {
+          condition.moment = reader.vec(*value);
+          moment_axes.check(reader, static_cast<int>(conditions.size()), condition.moment, *value);
+        }
+      }
+      conditions.push_back(condition);
+      continue;
+    }
 
     const Field beam = map.require("beam");
     const auto beam_index = beam_names.find(reader.name(beam));

@@ -29,11 +29,13 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
   NameTable material_names;
   NameTable beam_names;
   NameTable condition_names;
+  NameTable body_names;
   scenario.materials = read_materials(reader, top, material_names);
   scenario.beams = read_beams(reader, top, material_names, beam_names);
+  scenario.bodies = read_bodies(reader, top, beam_names, scenario.beams, body_names);
   MomentAxes moment_axes;
   scenario.conditions =
-      read_conditions(reader, top, beam_names, scenario.beams, condition_names, moment_axes);
+      read_conditions(reader, top, beam_names, scenario.beams, body_names, condition_names, moment_axes);
 
   scenario.contact = read_contact(reader, top, beam_names);
   LoadValues load_values = initial_load_values(scenario.conditions);

@@ -183,21 +183,26 @@ inline std::span<const Key<ConditionSpec>> ConditionSpec::keys() {
           "translation and rotation; rigid: the whole beam follows a rigid motion (a tool "
           "beam, never released); load: force and moment")
           .shown_default("required"),
-      K::doc("conditions[].beam", KeyType::string, "", "required", "naming a beam",
+      K::doc("conditions[].beam", KeyType::string, "", "required without bodies", "naming a beam",
              "the beam the condition acts on"),
-      K::doc("conditions[].at", KeyType::choice, "", "required",
+      K::doc("conditions[].bodies", KeyType::list, "", "-",
+             "of body names, non-empty, each once; one for a load; not with beam, at or type rigid",
+             "the rigid bodies the condition acts on instead of a beam section (docs/bodies.md): their "
+             "point c and rotation; a motion moves them all with one rigid motion about pivot"),
+      K::doc("conditions[].at", KeyType::choice, "", "required without bodies",
              "start | end | an integer in [0, 2 elements]",
              "the cross-section: start (node 0), end (node 2 elements) or a local node index; "
              "not on rigid"),
       K::doc("conditions[].pivot", KeyType::vector, "mm", "-", "motion and rigid only",
              "the fixed point the prescribed rotation turns the section centres about, r = p +"
              " u + Q (r0 - p); default: the section centre (motion), the centre of the beam's "
-             "middle node at activation (rigid)"),
+             "middle node at activation (rigid), the mean of the bodies' points at activation "
+             "(bodies)"),
       K::doc("conditions[].dofs", KeyType::list, "", "[all]",
              "of at least one of all | position | directors | x | y | z | g1x | g1y | g1z | "
-             "g2x | g2y | g2z",
+             "g2x | g2y | g2z; on bodies: all | position | rotation | x | y | z | rx | ry | rz",
              "clamp and motion only: the constrained dofs, the union of the items (position = "
-             "x, y, z; directors = the six g*)"),
+             "x, y, z; directors = the six g*; rotation = rx, ry, rz, a body's rotation vector)"),
       K::flag("conditions[].active", &ConditionSpec::initially_active, "active from the first stage on"),
       K::doc("conditions[].force", KeyType::vector, "N", "[0, 0, 0]", "",
              "load only: initial dead force on the section centre"),

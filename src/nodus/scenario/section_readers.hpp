@@ -87,9 +87,16 @@ std::vector<Material> read_materials(const Reader& reader, const MapView& top, N
 std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
                                  NameTable& names);
 
+/// The `bodies` section (empty if absent). Body names go to `names`.
+std::vector<BodySpec> read_bodies(const Reader& reader, const MapView& top, const NameTable& beam_names,
+                                  const std::vector<BeamSpec>& beams, NameTable& names);
+
+/// The `conditions` section; a condition may not take the name of a body (`body_names`), since both name
+/// columns of steps.csv.
 std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& top,
                                            const NameTable& beam_names, const std::vector<BeamSpec>& beams,
-                                           NameTable& names, MomentAxes& moment_axes);
+                                           const NameTable& body_names, NameTable& names,
+                                           MomentAxes& moment_axes);
 
 /// A list of stages (`stages`, or a branch's `stages`: `list` then has the pattern "stages" and its own
 /// path). `load_values`: the value of each load at the start of the first stage, updated stage by stage;

@@ -152,6 +152,33 @@ void check_beams(const Checker& check, const Scenario& s) {
   }
 }
 
+void check_bodies(const Checker& check, const Scenario& s) {
+  check.names(
+      names_of(s.bodies), [](std::size_t i) { return fmt::format("bodies[{}].name", i); }, "bodies[].name",
+      "bodies");
+  for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+    const BodySpec& body = s.bodies[b];
+    const std::string at = fmt::format("bodies[{}]", b);
+    check.keys(BodySpec::keys(), body, "bodies[]", at);
+    if (body.sections.empty()) check.fail_key(at + ".beams", "bodies[].beams", "[]");
+    for (std::size_t i = 0; i < body.sections.size(); ++i) {
+      const SectionRef& section = body.sections[i];
+      const std::string path = fmt::format("{}.beams[{}]", at, i);
+      check.index(path, section.beam, s.beams.size(), "beams");
+      const int last = 2 * s.beams[static_cast<std::size_t>(section.beam)].elements;
+      if (section.node != 0 && section.node != last)
+        check.fail(at + ".at", "one of start | end (node 0 or 2 elements of each beam)",
+                   std::to_string(section.node));
+      for (std::size_t j = 0; j < i; ++j)
+        if (body.sections[j].beam == section.beam && body.sections[j].node == section.node)
+          check.fail(path, "each section once", s.beams[static_cast<std::size_t>(section.beam)].name);
+    }
+    for (const ConditionSpec& condition : s.conditions)
+      if (condition.name == body.name)
+        check.fail(at + ".name", "a name unique among conditions and bodies", body.name);
+  }
+}
+
 void check_conditions(const Checker& check, const Scenario& s, AxisCheck& axes) {
   check.names(
       names_of(s.conditions), [](std::size_t i) { return fmt::format("conditions[{}].name", i); },
@@ -160,6 +187,42 @@ void check_conditions(const Checker& check, const Scenario& s, AxisCheck& axes) 
     const ConditionSpec& condition = s.conditions[c];
     const std::string at = fmt::format("conditions[{}]", c);
     check.keys(ConditionSpec::keys(), condition, "conditions[]", at);
+    if (!condition.bodies.empty()) {
+      for (std::size_t i = 0; i < condition.bodies.size(); ++i) {
+        const std::string path = fmt::format("{}.bodies[{}]", at, i);
+        check.index(path, condition.bodies[i], s.bodies.size(), "bodies");
+        if (std::find(condition.bodies.begin(), condition.bodies.begin() + static_cast<std::ptrdiff_t>(i),
+                      condition.bodies[i]) != condition.bodies.begin() + static_cast<std::ptrdiff_t>(i))
+          check.fail(path, "each body once in bodies", std::to_string(condition.bodies[i]));
+      }
+      if (condition.type == ConditionType::rigid)
+        check.fail(at + ".bodies",
+                   "no bodies on a rigid condition (bodies are for clamp, motion and load conditions)",
+                   "a list");
+      if (condition.type == ConditionType::load && condition.bodies.size() != 1)
+        check.fail(at + ".bodies", "one body for a load condition", std::to_string(condition.bodies.size()));
+      if (condition.pivot && condition.type != ConditionType::motion)
+        check.fail(at + ".pivot", "no pivot on a clamp or load condition", format_vec(*condition.pivot));
+      if (condition.pivot && !condition.pivot->allFinite())
+        check.fail_key(at + ".pivot", "conditions[].pivot", "a non-finite value");
+      if (condition.type != ConditionType::load) {
+        if (std::none_of(condition.body_dofs.begin(), condition.body_dofs.end(), [](bool d) { return d; }))
+          check.fail_key(at + ".dofs", "conditions[].dofs", "[]");
+        for (const auto& [key, value] : {std::pair{"force", condition.force}, {"moment", condition.moment}})
+          if (value.squaredNorm() != 0.0)
+            check.fail(at + "." + key,
+                       fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
+                                   type_name(condition.type), key),
+                       format_vec(value));
+      } else {
+        if (!condition.force.allFinite())
+          check.fail_key(at + ".force", "conditions[].force", format_vec(condition.force));
+        if (!condition.moment.allFinite())
+          check.fail_key(at + ".moment", "conditions[].moment", format_vec(condition.moment));
+        axes.moment(static_cast<int>(c), condition.moment, at + ".moment");
+      }
+      continue;
+    }
     check.index(at + ".beam", condition.beam, s.beams.size(), "beams");
     const BeamSpec& beam = s.beams[static_cast<std::size_t>(condition.beam)];
     const std::string_view type = type_name(condition.type);
@@ -264,6 +327,11 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
             "a condition that is not rigid (a tool beam stays where its motion puts it; take it out of "
             "contact with contact_off)",
             condition.name);
+      if (condition.bodies.size() > 1 && condition.type != ConditionType::load)
+        check.fail(path,
+                   "a condition on one body (a motion of several bodies is released body by body: give "
+                   "each its own condition)",
+                   condition.name);
     }
     check_contact_list(check, s, stage.contact_off, at, "contact_off");
     check_contact_list(check, s, stage.contact_on, at, "contact_on");
@@ -358,6 +426,7 @@ void validate(const Scenario& s) {
   if (s.beams.empty()) check.fail_key("beams", "beams", "[]");
   if (s.stages.empty()) check.fail_key("stages", "stages", "[]");
   check_beams(check, s);
+  check_bodies(check, s);
   AxisCheck axes(check);
   check_conditions(check, s, axes);
   check_contact(check, s);

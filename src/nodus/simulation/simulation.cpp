@@ -27,6 +27,12 @@ model::Model build_model(const scenario::Scenario& s) {
     model.add_beam({b.name, b.length, b.radius, b.elements, b.start, b.direction, b.director1,
                     beam::ElasticConstants{m.young_modulus, m.poisson_ratio}, b.bending_factor});
   }
+  for (const scenario::BodySpec& b : s.bodies) {
+    std::vector<int> nodes;
+    for (const scenario::SectionRef& section : b.sections)
+      nodes.push_back(model.beam(section.beam).node(section.node));
+    model.add_body(b.name, std::move(nodes));
+  }
   return model;
 }
 
@@ -47,6 +53,19 @@ loading::Conditions build_conditions(const scenario::Scenario& s, const model::M
   loading::Conditions conditions;
   for (int c = 0; c < static_cast<int>(s.conditions.size()); ++c) {
     const scenario::ConditionSpec& spec = s.conditions[static_cast<std::size_t>(c)];
+    if (!spec.bodies.empty()) {
+      std::vector<loading::BodyRef> bodies;
+      for (int b : spec.bodies) bodies.push_back({model.body(b).block, model.body_dof(b)});
+      if (spec.type == scenario::ConditionType::load) {
+        const loading::Vec3 axis = moment_axis(s, c);
+        conditions.add_body_load(spec.name, bodies.front(), spec.force, axis, spec.moment.dot(axis));
+      } else {
+        loading::DofMask mask{};
+        for (std::size_t d = 0; d < spec.body_dofs.size(); ++d) mask[d] = spec.body_dofs[d];
+        conditions.add_body_motion(spec.name, std::move(bodies), mask, spec.pivot);
+      }
+      continue;
+    }
     const beam::Beam& beam = model.beam(spec.beam);
     if (spec.type == scenario::ConditionType::rigid) {
       std::vector<int> nodes;
@@ -78,6 +97,22 @@ void check_stages(const scenario::Scenario& s, const model::Model& model,
     for (std::size_t c = 0; c < s.conditions.size(); ++c) {
       const scenario::ConditionSpec& spec = s.conditions[c];
       if (!active[c] || spec.type == scenario::ConditionType::load) continue;
+      if (!spec.bodies.empty()) {
+        for (int b : spec.bodies)
+          for (int d = 0; d < 6; ++d) {
+            if (!spec.body_dofs[static_cast<std::size_t>(d)]) continue;
+            int& o = owner[static_cast<std::size_t>(model.body_dof(b) + d)];
+            if (o >= 0)
+              throw scenario::ScenarioError(
+                  fmt::format("{}:{}: conditions[{}].dofs: expected no unknown prescribed by two active "
+                              "conditions, got '{}' "
+                              "and '{}' both prescribing unknown {} of body '{}' in stage '{}'{}",
+                              s.path, spec.line, c, s.conditions[static_cast<std::size_t>(o)].name, spec.name,
+                              d, s.bodies[static_cast<std::size_t>(b)].name, stage.name, where));
+            o = static_cast<int>(c);
+          }
+        continue;
+      }
       const beam::Beam& beam = model.beam(spec.beam);
       const bool rigid = spec.type == scenario::ConditionType::rigid;
       for (int local = rigid ? 0 : spec.node; local <= (rigid ? beam.num_nodes() - 1 : spec.node); ++local)
@@ -167,6 +202,12 @@ Simulation::Simulation(scenario::Scenario scenario)
   problem_ = std::make_unique<EquilibriumProblem>(
       model_, conditions_,
       Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
+  if (!model_.bodies().empty()) {
+    std::vector<double> penalties;
+    for (const scenario::BodySpec& b : scenario_.bodies) penalties.push_back(b.penalty);
+    averaged_ = static_cast<model::AveragedConditionsTerm*>(
+        &problem_->add_term(std::make_unique<model::AveragedConditionsTerm>(model_, penalties)));
+  }
   if (scenario_.contact.enabled) {
     contact_enabled_ = true;
     contact_beams_ = scenario_.contact.beams;
@@ -284,10 +325,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
         Eigen::VectorXd residual;
         problem_->restore();  // evaluate the support forces at the committed state
         problem_->evaluate(residual, false);
-        for (int c : stage.release)
-          conditions_.release(
-              c, t0, problem_->full_residual().segment<beam::kNodeDofs>(model_.node_dof(conditions_.node(c))),
-              t1);
+        for (int c : stage.release) conditions_.release(c, t0, problem_->full_residual(), t1);
       }
       for (int c : stage.activate) conditions_.activate(c, t0, problem_->committed_state());
       if (!stage.contact_off.empty() || !stage.contact_on.empty()) {
@@ -385,6 +423,11 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
           for (int c = 0; c < conditions_.size(); ++c)
             record.sections.push_back(
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
+          for (int b = 0; b < static_cast<int>(model_.bodies().size()); ++b) {
+            const model::BodyResultant res = averaged_->resultant(b, problem_->committed_state());
+            record.bodies.push_back(
+                {res.force, res.moment, averaged_->error(b, problem_->committed_state())});
+          }
           update_counters();
           for (StepObserver* o : observers) o->on_step(*this, record);
           if (options.cancel && options.cancel()) {

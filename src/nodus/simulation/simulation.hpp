@@ -14,6 +14,7 @@
 
 #include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
+#include "nodus/model/averaged_conditions_term.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/contact_loops.hpp"
@@ -21,6 +22,13 @@
 #include "nodus/solver/load_stepping.hpp"
 
 namespace nodus::simulation {
+
+/// A rigid body in a converged state (model/averaged_conditions_term.hpp).
+struct BodyRecord {
+  loading::Vec3 force = loading::Vec3::Zero();   ///< exerted on its bound sections [N]
+  loading::Vec3 moment = loading::Vec3::Zero();  ///< about its point c [N mm]
+  double error = 0.0;  ///< how far the penalty lets it stray from the best fit of its sections [mm]
+};
 
 /// One converged load step.
 struct StepRecord {
@@ -32,6 +40,7 @@ struct StepRecord {
   double residual = 0.0;                        ///< |R| over the free unknowns at convergence [N]
   double increment = 0.0;                       ///< scaled size of the last Newton increment [-]
   std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)
+  std::vector<BodyRecord> bodies;               ///< per rigid body (Scenario::bodies order)
   int zones = 0;                                ///< proximity zones detected in the converged state
   int contact_elements = 0;                     ///< contact elements along them
   int detections = 0;                           ///< contact loop 2 iterations (0 without contact forces)
@@ -144,6 +153,8 @@ class Simulation {
   const scenario::Scenario& scenario() const { return scenario_; }
   const model::Model& model() const { return model_; }
   const loading::Conditions& conditions() const { return conditions_; }
+  /// The averaged conditions of the rigid bodies; null without bodies.
+  const model::AveragedConditionsTerm* averaged_conditions() const { return averaged_; }
   /// The last converged state: nine values (r, g1, g2) per node.
   const Eigen::VectorXd& state() const;
   /// The contact geometry detected in the last converged state; null when the scenario has no contact.
@@ -182,6 +193,7 @@ class Simulation {
   model::Model model_;
   loading::Conditions conditions_;
   std::unique_ptr<EquilibriumProblem> problem_;
+  model::AveragedConditionsTerm* averaged_ = nullptr;  ///< owned by problem_
   double time_ = 0.0;
   bool contact_enabled_ = false;
   contact::DetectionParameters detection_;
