@@ -40,9 +40,11 @@ Model yarn() {
   return m;
 }
 
-Eigen::VectorXd residual(AveragedConditionsTerm& term, const Eigen::VectorXd& x) {
+/// The term's residual at x, the last converged state being `committed` (by default x: no tie force).
+Eigen::VectorXd residual(AveragedConditionsTerm& term, const Eigen::VectorXd& x,
+                         const Eigen::VectorXd* committed = nullptr) {
   Eigen::VectorXd r = Eigen::VectorXd::Zero(x.size());
-  term.add({x, x}, r, nullptr);
+  term.add({x, committed ? *committed : x}, r, nullptr);
   return r;
 }
 
@@ -82,10 +84,12 @@ TEST(AveragedConditions, ResidualIsTheGradientOfThePenaltyEnergy) {
   EXPECT_LT(worst, 1e-6 * largest);
 }
 
+// With a committed state elsewhere, so that the tie acts too (made strong here: 0.3 of the penalty).
 TEST(AveragedConditions, TangentMatchesFiniteDifferencesOfTheResidual) {
   const Model m = yarn();
-  AveragedConditionsTerm term(m, {2.0, 0.0, 50.0});
+  AveragedConditionsTerm term(m, {2.0, 0.0, 50.0}, {0.3, 0.3, 0.3});
   for (unsigned seed : {1u, 2u}) {
+    const Eigen::VectorXd committed = perturbed(m, seed + 10);
     Eigen::VectorXd x = perturbed(m, seed);
     if (seed == 2) x.segment<3>(m.body_dof(1) + 3) = Vec3(0.5, -1.0, 7.0);  // more than a turn
     std::vector<int> free_index(static_cast<std::size_t>(m.num_dofs()));
@@ -95,7 +99,7 @@ TEST(AveragedConditions, TangentMatchesFiniteDifferencesOfTheResidual) {
     solver::SparseAssembler assembler(m.dofs().offsets(), free_index, groups);
     assembler.set_zero();
     Eigen::VectorXd r = Eigen::VectorXd::Zero(x.size());
-    term.add({x, x}, r, &assembler);
+    term.add({x, committed}, r, &assembler);
     const Eigen::MatrixXd k(assembler.matrix());
     EXPECT_LT((k - k.transpose()).cwiseAbs().maxCoeff(), 1e-9 * k.cwiseAbs().maxCoeff());
     const double h = 1e-6;
@@ -104,7 +108,7 @@ TEST(AveragedConditions, TangentMatchesFiniteDifferencesOfTheResidual) {
       Eigen::VectorXd xp = x, xm = x;
       xp[j] += h;
       xm[j] -= h;
-      const Eigen::VectorXd fd = (residual(term, xp) - residual(term, xm)) / (2 * h);
+      const Eigen::VectorXd fd = (residual(term, xp, &committed) - residual(term, xm, &committed)) / (2 * h);
       worst = std::max(worst, (fd - k.col(j)).cwiseAbs().maxCoeff());
     }
     EXPECT_LT(worst, 1e-6 * k.cwiseAbs().maxCoeff()) << "seed " << seed;
@@ -131,6 +135,34 @@ TEST(AveragedConditions, RigidMotionOfBodiesAndSectionsCostsNothing) {
   const double scale = residual(term, perturbed(m, 4)).cwiseAbs().maxCoeff();
   EXPECT_LT(residual(term, x).cwiseAbs().maxCoeff(), 1e-12 * scale);
   for (int b = 0; b < 3; ++b) EXPECT_LT(term.error(b, x), 1e-14);
+}
+
+// The tie resists each step's rearrangement of the sections relative to the body, and nothing else: a rigid
+// motion of bodies and sections from the committed state leaves it at zero, a rearrangement does not.
+TEST(AveragedConditions, TieActsOnRearrangementsWithinAStepOnly) {
+  const Model m = yarn();
+  AveragedConditionsTerm term(m, {}, {});
+  const Eigen::VectorXd committed = perturbed(m, 5);
+  const Vec3 rotation(0.2, -0.7, 1.1), translation(0.1, 0.2, -0.3);
+  const Mat3 q = rotation_matrix(rotation);
+  Eigen::VectorXd x = committed;
+  for (int n = 0; n < m.num_nodes(); ++n) {
+    const int i = m.node_dof(n);
+    x.segment<3>(i) = q * committed.segment<3>(i) + translation;
+    x.segment<3>(i + 3) = q * committed.segment<3>(i + 3);
+    x.segment<3>(i + 6) = q * committed.segment<3>(i + 6);
+  }
+  for (int b = 0; b < 3; ++b) {
+    const int i = m.body_dof(b);
+    x.segment<3>(i) = q * committed.segment<3>(i) + translation;
+    x.segment<3>(i + 3) = rotation_vector(q * rotation_matrix(committed.segment<3>(i + 3)), Vec3::Zero());
+  }
+  for (int b = 0; b < 3; ++b) EXPECT_LT(term.tie_force(b, x, committed), 1e-10) << "body " << b;
+  // A section moved by s relative to the body: the tie pulls it back with k_t s, k_t = 1e-6 k.
+  const double s = 1e-3;
+  x[m.node_dof(m.body(2).nodes[0]) + 1] += s;
+  EXPECT_NEAR(term.tie_force(2, x, committed), AveragedConditionsTerm::kDefaultTie * term.penalty(2) * s,
+              1e-9 * term.penalty(2) * s);
 }
 
 TEST(AveragedConditions, SectionsRearrangeFreelyWhileTheAveragesHold) {

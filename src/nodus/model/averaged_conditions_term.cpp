@@ -23,8 +23,8 @@ constexpr double kEps = std::numeric_limits<double>::epsilon();
 
 }  // namespace
 
-AveragedConditionsTerm::AveragedConditionsTerm(const Model& model,
-                                               const std::vector<double>& penalty_factors) {
+AveragedConditionsTerm::AveragedConditionsTerm(const Model& model, const std::vector<double>& penalty_factors,
+                                               const std::vector<double>& ties) {
   const Eigen::VectorXd& x0 = model.reference();
   for (int b = 0; b < static_cast<int>(model.bodies().size()); ++b) {
     const RigidBody& rb = model.body(b);
@@ -55,6 +55,10 @@ AveragedConditionsTerm::AveragedConditionsTerm(const Model& model,
                               ? penalty_factors[static_cast<std::size_t>(b)]
                               : kDefaultPenalty;
     body.k = factor * stiffness / n;
+    const double tie = static_cast<std::size_t>(b) < ties.size() && ties[static_cast<std::size_t>(b)] > 0.0
+                           ? ties[static_cast<std::size_t>(b)]
+                           : kDefaultTie;
+    body.kt = tie * body.k;
     floor_ += 10.0 * kEps * body.k * n * std::sqrt(body.j);
     bodies_.push_back(std::move(body));
   }
@@ -146,12 +150,76 @@ Eigen::VectorXd AveragedConditionsTerm::gradient(const Body& body, const Eigen::
   return grad;
 }
 
+Eigen::VectorXd AveragedConditionsTerm::tie_gradient(const Body& body, const Eigen::VectorXd& x,
+                                                     const Eigen::VectorXd& committed,
+                                                     Eigen::MatrixXd* hessian) const {
+  const int ns = static_cast<int>(body.sections.size());
+  const int m = 6 + kNode * ns;
+  const Vec3 c = x.segment<3>(body.dof), c_old = committed.segment<3>(body.dof);
+  const RotationDerivatives rd = rotation_derivatives(x.segment<3>(body.dof + 3), hessian != nullptr);
+  const Mat3 qt = rd.q.transpose(), qt_old = rotation_matrix(committed.segment<3>(body.dof + 3)).transpose();
+  Eigen::VectorXd grad = Eigen::VectorXd::Zero(m);
+  if (hessian) hessian->setZero(m, m);
+  // One misfit v (eps_i or phi_ai) at a time: v = Q^T (y - z) - v0, y the section's unknown (r_i or g_ai) at
+  // column `col`, z = c for eps (with_c) and 0 for phi; weight 1 or w_i. Its change since the committed
+  // state: the v0 cancel.
+  Eigen::MatrixXd jac(3, m);
+  auto misfit = [&](int col, const Vec3& y, const Vec3& y_old, bool with_c, double weight) {
+    const Vec3 d = with_c ? Vec3(y - c) : y, d_old = with_c ? Vec3(y_old - c_old) : y_old;
+    const Vec3 mu = body.kt * weight * (qt * d - qt_old * d_old);
+    jac.setZero();
+    if (with_c) jac.block<3, 3>(0, 0) = -qt;
+    for (std::size_t k = 0; k < 3; ++k) jac.col(3 + static_cast<int>(k)) = rd.first[k].transpose() * d;
+    jac.block<3, 3>(0, col) = qt;
+    grad += jac.transpose() * mu;
+    if (!hessian) return;
+    Eigen::MatrixXd& h = *hessian;
+    h += body.kt * weight * jac.transpose() * jac;
+    for (std::size_t k = 0; k < 3; ++k) {
+      const int row = 3 + static_cast<int>(k);
+      const Vec3 v = rd.first[k] * mu;  // d/dy of mu . Q_k^T (y - z)
+      h.block<1, 3>(row, col) += v.transpose();
+      h.block<3, 1>(col, row) += v;
+      if (with_c) {
+        h.block<1, 3>(row, 0) -= v.transpose();
+        h.block<3, 1>(0, row) -= v;
+      }
+      for (std::size_t l = 0; l < 3; ++l)
+        h(row, 3 + static_cast<int>(l)) += mu.dot(rd.second[k][l].transpose() * d);
+    }
+  };
+  for (int i = 0; i < ns; ++i) {
+    const Section& s = body.sections[static_cast<std::size_t>(i)];
+    const int col = 6 + kNode * i;
+    misfit(col, x.segment<3>(s.dof), committed.segment<3>(s.dof), true, 1.0);
+    misfit(col + 3, x.segment<3>(s.dof + 3), committed.segment<3>(s.dof + 3), false, s.w);
+    misfit(col + 6, x.segment<3>(s.dof + 6), committed.segment<3>(s.dof + 6), false, s.w);
+  }
+  return grad;
+}
+
+double AveragedConditionsTerm::tie_force(int b, const Eigen::VectorXd& x,
+                                         const Eigen::VectorXd& committed) const {
+  const Body& body = bodies_.at(static_cast<std::size_t>(b));
+  const Eigen::VectorXd g = tie_gradient(body, x, committed, nullptr);
+  double squared = 0.0;
+  for (std::size_t i = 0; i < body.sections.size(); ++i)
+    squared += g.segment<kNode>(6 + kNode * static_cast<int>(i)).squaredNorm();
+  return std::sqrt(squared);
+}
+
 void AveragedConditionsTerm::add(const TermState& state, Eigen::VectorXd& residual,
                                  solver::SparseAssembler* tangent) {
   roundoff_ = 0.0;
-  Eigen::MatrixXd h;
-  for (const Body& body : bodies_) {
-    const Eigen::VectorXd g = gradient(body, state.x, tangent ? &h : nullptr);
+  tie_forces_.assign(bodies_.size(), 0.0);
+  Eigen::MatrixXd h, h_tie;
+  for (std::size_t b = 0; b < bodies_.size(); ++b) {
+    const Body& body = bodies_[b];
+    Eigen::VectorXd g = gradient(body, state.x, tangent ? &h : nullptr);
+    const Eigen::VectorXd tie = tie_gradient(body, state.x, state.x_committed, tangent ? &h_tie : nullptr);
+    tie_forces_[b] = tie.tail(tie.size() - 6).norm();
+    g += tie;
+    if (tangent) h += h_tie;
     residual.segment<6>(body.dof) += g.head<6>();
     double moved = (state.x.segment<3>(body.dof) - body.c0).norm();
     for (std::size_t i = 0; i < body.sections.size(); ++i) {

@@ -22,7 +22,18 @@
 ///   W = (k n / 2) (|C_c|^2 + |C_t|^2 / J),   J = (1/n) sum_i (|a_i|^2 + 2 w_i)   [mm^2],
 ///
 /// k = factor * (mean E A / h of the bound sections) [N/mm]. sqrt(|C_c|^2 + |C_t|^2 / J) [mm] is the error
-/// the penalty leaves (error()). Residual and tangent are exact (Q's second derivatives included).
+/// the penalty leaves (error()).
+///
+/// What the conditions leave free costs nothing, and a section held by nothing else (a fibre that touches no
+/// other yet) then makes the tangent singular: n sections spreading radially, or turning about their own
+/// axes by opposite angles. A tie resists the part of each step's motion that rearranges the sections
+/// relative to the body, measured in the body's frame, eps_i = Q^T (r_i - c) - a_i, phi_ai = Q^T g_ai -
+/// g_ai0, against their values at the last converged state:
+///
+///   D = (k_t / 2) sum_i [ |eps_i - eps_i*|^2 + w_i sum_a |phi_ai - phi_ai*|^2 ],   k_t = tie * k.
+///
+/// It is zero for any rigid motion and at rest, like a drag on the rearrangement within a step; its force
+/// is reported (tie_force()). Residual and tangent are exact (Q's second derivatives included).
 
 #include <string>
 #include <vector>
@@ -42,10 +53,13 @@ struct BodyResultant {
 
 class AveragedConditionsTerm final : public Term {
  public:
-  /// The conditions of every body of `model`; penalty factor per body (<= 0: kDefaultPenalty).
-  AveragedConditionsTerm(const Model& model, const std::vector<double>& penalty_factors);
+  /// The conditions of every body of `model`; penalty factor and tie per body (<= 0 or missing: the
+  /// defaults).
+  AveragedConditionsTerm(const Model& model, const std::vector<double>& penalty_factors,
+                         const std::vector<double>& ties = {});
 
   static constexpr double kDefaultPenalty = 1e3;
+  static constexpr double kDefaultTie = 1e-6;
 
   std::string_view name() const override { return "averaged conditions of rigid bodies"; }
   void couplings(std::vector<std::vector<int>>& groups) const override;
@@ -62,6 +76,12 @@ class AveragedConditionsTerm final : public Term {
   BodyResultant resultant(int b, const Eigen::VectorXd& x) const;
   /// k of body b [N/mm].
   double penalty(int b) const { return bodies_[static_cast<std::size_t>(b)].k; }
+  /// |force of the tie| over the sections of body b at x, the last converged state being `committed` [N].
+  double tie_force(int b, const Eigen::VectorXd& x, const Eigen::VectorXd& committed) const;
+  /// The same at the last add() (in a run: the converged state of the last step) [N].
+  double last_tie_force(int b) const {
+    return static_cast<std::size_t>(b) < tie_forces_.size() ? tie_forces_[static_cast<std::size_t>(b)] : 0.0;
+  }
 
  private:
   struct Section {
@@ -77,14 +97,19 @@ class AveragedConditionsTerm final : public Term {
     std::vector<Section> sections;
     std::vector<int> blocks;  ///< its own block, then its sections' nodes
     double k = 0.0, j = 0.0;
+    double kt = 0.0;  ///< k_t [N/mm]
   };
   /// C_c and C_t of body b at x.
   void conditions(const Body& body, const Eigen::VectorXd& x, const Eigen::Matrix3d& q, Eigen::Vector3d& cc,
                   Eigen::Vector3d& ct) const;
   /// d W / d q over the body's unknowns (c, theta, then r, g1, g2 of each section).
   Eigen::VectorXd gradient(const Body& body, const Eigen::VectorXd& x, Eigen::MatrixXd* hessian) const;
+  /// d D / d q, the same way; `committed`: the last converged state.
+  Eigen::VectorXd tie_gradient(const Body& body, const Eigen::VectorXd& x, const Eigen::VectorXd& committed,
+                               Eigen::MatrixXd* hessian) const;
 
   std::vector<Body> bodies_;
+  std::vector<double> tie_forces_;  ///< per body, at the last add()
   double floor_ = 0.0, roundoff_ = 0.0;
 };
 

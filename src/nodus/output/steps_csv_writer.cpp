@@ -23,7 +23,7 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
     for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz"})
       header += "," + csv_field(name + "_" + component);
   for (const std::string& name : body_names)
-    for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz", "error"})
+    for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz", "error", "tie"})
       header += "," + csv_field(name + "_" + component);
   return header;
 }
@@ -50,11 +50,11 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
   for (int b = 0; b < num_bodies; ++b) {
     if (b < static_cast<int>(record.bodies.size())) {
       const simulation::BodyRecord& s = record.bodies[static_cast<std::size_t>(b)];
-      fmt::format_to(std::back_inserter(row), ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}",
-                     s.force.x(), s.force.y(), s.force.z(), s.moment.x(), s.moment.y(), s.moment.z(),
-                     s.error);
+      fmt::format_to(std::back_inserter(row),
+                     ",{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g},{:.10g}", s.force.x(),
+                     s.force.y(), s.force.z(), s.moment.x(), s.moment.y(), s.moment.z(), s.error, s.tie);
     } else {
-      fmt::format_to(std::back_inserter(row), ",,,,,,,");
+      fmt::format_to(std::back_inserter(row), ",,,,,,,,");
     }
   }
   return fmt::to_string(row);

@@ -17,7 +17,7 @@ namespace nodus::output {
 /// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
 /// stabilization_force,loops_converged,
 /// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order, then
-/// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error for each rigid body name in order.
+/// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error,BODY_tie for each rigid body name in order.
 std::string steps_csv_header(const std::vector<std::string>& condition_names,
                              const std::vector<std::string>& body_names = {});
 
@@ -28,7 +28,7 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
 /// and `slipping` are the record's contact-loop figures (0 without contact forces); `loops_converged` is 1 or
 /// 0 (1 without contact forces). Sections missing from the
 /// record (fewer than `num_conditions`) give empty fields, as do bodies (fewer than `num_bodies`): the force
-/// [N] and moment [N mm] each exerts on its sections, about its point, and its error [mm].
+/// [N] and moment [N mm] each exerts on its sections, about its point, its error [mm] and its tie force [N].
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions, int num_bodies = 0);
 

@@ -109,7 +109,8 @@ struct BodySpec {
   std::string name;
   std::vector<SectionRef> sections;  ///< the bound sections, at least one, none twice
   double penalty = 0.0;  ///< factor of the penalty of the averaged conditions over E A / h [-], auto if <= 0
-  int line = 0;          ///< line of the body in the file (for messages)
+  double tie = 0.0;  ///< stiffness of the rearrangement tie as a fraction of the penalty [-], auto if <= 0
+  int line = 0;      ///< line of the body in the file (for messages)
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<BodySpec>> keys();
@@ -127,6 +128,12 @@ inline std::span<const Key<BodySpec>> BodySpec::keys() {
       K::real("bodies[].penalty", &BodySpec::penalty, "", "> 0 or auto", ranges::positive,
               "stiffness of the averaged conditions as a multiple of E A / h of the bound fibres (h "
               "the element length); the error it leaves is written to steps.csv. auto: 1e3")
+          .or_auto(),
+      K::real("bodies[].tie", &BodySpec::tie, "", "> 0 or auto", ranges::positive,
+              "stiffness, as a fraction of the penalty, of the tie that resists each step's "
+              "rearrangement of the bound sections relative to the body (zero at rest and for rigid "
+              "motions), so that sections held by nothing else do not make the tangent singular; its "
+              "force is written to steps.csv. auto: 1e-6")
           .or_auto(),
   };
   return keys;

@@ -203,10 +203,13 @@ Simulation::Simulation(scenario::Scenario scenario)
       model_, conditions_,
       Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
   if (!model_.bodies().empty()) {
-    std::vector<double> penalties;
-    for (const scenario::BodySpec& b : scenario_.bodies) penalties.push_back(b.penalty);
+    std::vector<double> penalties, ties;
+    for (const scenario::BodySpec& b : scenario_.bodies) {
+      penalties.push_back(b.penalty);
+      ties.push_back(b.tie);
+    }
     averaged_ = static_cast<model::AveragedConditionsTerm*>(
-        &problem_->add_term(std::make_unique<model::AveragedConditionsTerm>(model_, penalties)));
+        &problem_->add_term(std::make_unique<model::AveragedConditionsTerm>(model_, penalties, ties)));
   }
   if (scenario_.contact.enabled) {
     contact_enabled_ = true;
@@ -425,8 +428,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
           for (int b = 0; b < static_cast<int>(model_.bodies().size()); ++b) {
             const model::BodyResultant res = averaged_->resultant(b, problem_->committed_state());
-            record.bodies.push_back(
-                {res.force, res.moment, averaged_->error(b, problem_->committed_state())});
+            record.bodies.push_back({res.force, res.moment, averaged_->error(b, problem_->committed_state()),
+                                     averaged_->last_tie_force(b)});
           }
           update_counters();
           for (StepObserver* o : observers) o->on_step(*this, record);

@@ -28,6 +28,7 @@ struct BodyRecord {
   loading::Vec3 force = loading::Vec3::Zero();   ///< exerted on its bound sections [N]
   loading::Vec3 moment = loading::Vec3::Zero();  ///< about its point c [N mm]
   double error = 0.0;  ///< how far the penalty lets it stray from the best fit of its sections [mm]
+  double tie = 0.0;    ///< |force of the rearrangement tie| on its sections in the step [N]
 };
 
 /// One converged load step.
