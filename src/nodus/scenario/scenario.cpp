@@ -31,6 +31,9 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
   NameTable condition_names;
   scenario.materials = read_materials(reader, top, material_names);
   scenario.beams = read_beams(reader, top, material_names, beam_names);
+  // The yarns' fibres after the file's beams, and their bodies; the file's bodies, which may bind yarn
+  // fibres, come after them.
+  read_yarns(reader, top, material_names, beam_names, scenario);
   MomentAxes moment_axes;
   scenario.conditions =
       read_conditions(reader, top, beam_names, scenario.beams, condition_names, moment_axes);
