@@ -266,6 +266,8 @@ std::vector<std::string> declared_paths() {
   add(Scenario::keys());
   add(Material::keys());
   add(BeamSpec::keys());
+  add(YarnSpec::keys());
+  add(BodySpec::keys());
   add(ConditionSpec::keys());
   add(StageSpec::keys());
   add(MotionTarget::keys());

@@ -12,6 +12,7 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/scenario/section_readers.hpp"
 #include "nodus/scenario/yaml_reader.hpp"
+#include "nodus/scenario/yarn.hpp"
 
 namespace nodus::scenario {
 
@@ -148,8 +149,12 @@ std::string describe(const Scenario& scenario) {
     describe_keys(out, Material::keys(), material, "    ");
   }
 
-  line("beams:");
-  for (const BeamSpec& beam : scenario.beams) {
+  // The beams of the file; those the yarns made are shown as their yarns.
+  const std::vector<bool> from_yarns = beams_made_by_yarns(scenario);
+  line(std::find(from_yarns.begin(), from_yarns.end(), false) == from_yarns.end() ? "beams: []" : "beams:");
+  for (std::size_t b = 0; b < scenario.beams.size(); ++b) {
+    if (from_yarns[b]) continue;
+    const BeamSpec& beam = scenario.beams[b];
     line(fmt::format("  - name: {}", yaml_name(beam.name)));
     describe_keys(out, BeamSpec::keys(), beam, "    ", [&](const Key<BeamSpec>& key) {
       const std::string_view leaf = leaf_name(key.path);
@@ -164,8 +169,38 @@ std::string describe(const Scenario& scenario) {
     });
   }
 
-  if (!scenario.bodies.empty()) line("bodies:");
-  for (const BodySpec& body : scenario.bodies) {
+  if (!scenario.yarns.empty()) line("yarns:");
+  for (const YarnSpec& yarn : scenario.yarns) {
+    const int fibres = yarn.rovings * yarn.fibres_per_roving;
+    line(fmt::format(
+        "  - name: {}  # made beams {} .. {} ({}), bodies {}", yaml_name(yarn.name),
+        yaml_name(yarn_beam_name(yarn.name, 0, 0)),
+        yaml_name(yarn_beam_name(yarn.name, yarn.rovings - 1, yarn.fibres_per_roving - 1)), fibres,
+        yarn.bodies
+            ? fmt::format("{} .. {} ({})", yaml_name(yarn_body_name(yarn.name, 0, false)),
+                          yaml_name(yarn_body_name(yarn.name, yarn.rovings - 1, true)), 2 * yarn.rovings)
+            : std::string("none")));
+    describe_keys(out, YarnSpec::keys(), yarn, "    ", [&](const Key<YarnSpec>& key) {
+      const std::string_view leaf = leaf_name(key.path);
+      if (leaf == "material")
+        line(fmt::format("    material: {}", yaml_name(scenario.materials.at(yarn.material).name)));
+      if (leaf == "elements")
+        line(fmt::format("    elements: {}  # per fibre, nodes 0..{}", yarn.elements, 2 * yarn.elements));
+      if (leaf == "start") line(fmt::format("    start: {}  # mm", format_vec(yarn.start)));
+      if (leaf == "direction") line(fmt::format("    direction: {}", format_vec(yarn.direction)));
+      if (leaf == "clearance")
+        line(fmt::format("    clearance: {}  # mm{}", format_number(yarn.gap()),
+                         yarn.clearance ? "" : " (default: 0.01 fibre_radius)"));
+      return !key.scalar() || leaf == "elements";
+    });
+  }
+
+  // The file's own bodies (a yarn's are echoed by its yarn).
+  const std::vector<bool> made = bodies_made_by_yarns(scenario);
+  if (std::find(made.begin(), made.end(), false) != made.end()) line("bodies:");
+  for (std::size_t b = 0; b < scenario.bodies.size(); ++b) {
+    if (made[b]) continue;
+    const BodySpec& body = scenario.bodies[b];
     line(fmt::format("  - name: {}  # line {}", yaml_name(body.name), body.line));
     describe_keys(out, BodySpec::keys(), body, "    ", [&](const Key<BodySpec>& key) {
       const std::string_view leaf = leaf_name(key.path);

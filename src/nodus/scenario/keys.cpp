@@ -20,6 +20,7 @@ void append_children(std::vector<KeyDoc>& out, std::string_view path) {
   if (path == "materials") append(out, Material::keys());
   if (path == "beams") append(out, BeamSpec::keys());
   if (path == "bodies") append(out, BodySpec::keys());
+  if (path == "yarns") append(out, YarnSpec::keys());
   if (path == "conditions") append(out, ConditionSpec::keys());
   if (path == "stages") append(out, StageSpec::keys());
   if (path == "stages[].motions") append(out, MotionTarget::keys());

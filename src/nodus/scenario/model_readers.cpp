@@ -57,7 +57,11 @@ std::vector<Material> read_materials(const Reader& reader, const MapView& top, N
 std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
                                  NameTable& names) {
   std::vector<BeamSpec> beams;
-  for (const Field& item : reader.list(top.require("beams"), true)) {
+  // With yarns, beams is optional and may be empty (read_yarns then wants at least one yarn).
+  const bool yarns = top.get("yarns").has_value();
+  const auto list = top.get("beams");
+  if (!list && yarns) return beams;
+  for (const Field& item : reader.list(list ? *list : top.require("beams"), !yarns)) {
     const MapView map(reader, item);
     BeamSpec beam;
     const Field name = map.require("name");

@@ -32,7 +32,17 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
   NameTable body_names;
   scenario.materials = read_materials(reader, top, material_names);
   scenario.beams = read_beams(reader, top, material_names, beam_names);
-  scenario.bodies = read_bodies(reader, top, beam_names, scenario.beams, body_names);
+  // The yarns' fibres after the file's beams, and their bodies; the file's bodies, which may bind yarn
+  // fibres, come after them.
+  read_yarns(reader, top, material_names, beam_names, scenario);
+  // Names of the yarns' bodies first, so that the file's bodies and conditions cannot take them.
+  for (const BodySpec& body : scenario.bodies) {
+    body_names.index_and_line.emplace(body.name,
+                                      std::pair{static_cast<int>(body_names.names.size()), body.line});
+    body_names.names.push_back(body.name);
+  }
+  std::vector<BodySpec> bodies = read_bodies(reader, top, beam_names, scenario.beams, body_names);
+  scenario.bodies.insert(scenario.bodies.end(), bodies.begin(), bodies.end());
   MomentAxes moment_axes;
   scenario.conditions =
       read_conditions(reader, top, beam_names, scenario.beams, body_names, condition_names, moment_axes);

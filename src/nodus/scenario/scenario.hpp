@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/model/yarn_layout.hpp"
 #include "nodus/scenario/key.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/newton.hpp"
@@ -135,6 +136,99 @@ inline std::span<const Key<BodySpec>> BodySpec::keys() {
               "motions), so that sections held by nothing else do not make the tangent singular; its "
               "force is written to steps.csv. auto: 1e-6")
           .or_auto(),
+  };
+  return keys;
+}
+
+/// How the rovings sit in a yarn's section.
+enum class YarnPacking {
+  ring,  ///< evenly on a circle around the yarn axis, at the angles 2 pi k / rovings (docs/yarns.md)
+};
+
+/// A twisted yarn before twisting (`yarns`; docs/yarns.md): `rovings` rovings of `fibres_per_roving`
+/// straight parallel fibres, laid out in the section by model::yarn_layout with neighbours 2 R + clearance
+/// apart. The reader writes its fibres into Scenario::beams, named NAME.rK.fJ (K, J from 1; roving after
+/// roving), after the file's own beams, and with `bodies` two rigid bodies per roving into Scenario::bodies,
+/// NAME.rK.start and NAME.rK.end, binding the start (node 0) and end (node 2 elements) sections of the
+/// roving's fibres. append_yarn (yarn.hpp) does the same for a scenario built in code.
+struct YarnSpec {
+  std::string name;
+  int rovings = 1;                  ///< m, >= 1
+  int fibres_per_roving = 1;        ///< n, >= 1
+  double fibre_radius = 0.0;        ///< R [mm], > 0
+  double length = 0.0;              ///< L [mm], > 0
+  int elements = 0;                 ///< 3-node quadratic elements per fibre, >= 1
+  int material = 0;                 ///< index into Scenario::materials
+  Vec3 start = Vec3::Zero();        ///< the yarn axis at the fibres' start sections [mm]
+  Vec3 direction = Vec3::UnitX();   ///< unit axis direction (normalised by the reader)
+  std::optional<double> clearance;  ///< c, gap between neighbouring fibres [mm], >= 0; none: 0.01 R
+  model::RovingPacking roving_packing = model::RovingPacking::hexagonal;
+  YarnPacking yarn_packing = YarnPacking::ring;
+  double bending_factor = 1.0;  ///< as beams[].bending_factor, > 0
+  bool bodies = true;           ///< also two rigid bodies per roving
+  int line = 0;                 ///< line of the yarn in the file (for messages)
+  /// Where append_yarn put what it made: Scenario::beams [first_beam, first_beam + m n) and, with `bodies`,
+  /// Scenario::bodies [first_body, first_body + 2 m) (roving K: its start body, then its end body).
+  int first_beam = 0;
+  int first_body = 0;
+
+  /// c [mm]: `clearance`, or its default 0.01 R.
+  double gap() const { return clearance ? *clearance : kDefaultClearance * fibre_radius; }
+  /// The default clearance as a multiple of R: the fibres start apart by half the default max_penetration
+  /// (0.02 R), so that no contact is active in the laid state, whatever the round-off, and contact engages
+  /// as soon as twisting closes a gap of a fraction of the tolerated penetration.
+  static constexpr double kDefaultClearance = 0.01;
+
+  /// The keys of the file this struct holds, in file order (key.hpp).
+  static std::span<const Key<YarnSpec>> keys();
+};
+
+inline std::span<const Key<YarnSpec>> YarnSpec::keys() {
+  using K = Key<YarnSpec>;
+  static const K keys[] = {
+      K::doc("yarns[].name", KeyType::string, "", "required",
+             "unique among yarns; NAME.rK.fJ unique among beams, NAME.rK.start|end among bodies",
+             "name of the yarn; its fibres are the beams NAME.rK.fJ, its bodies NAME.rK.start and "
+             "NAME.rK.end (K, J from 1)"),
+      K::whole("yarns[].rovings", &YarnSpec::rovings, ">= 1", ranges::at_least_one,
+               "number of rovings m, evenly around the yarn axis")
+          .shown_default("required"),
+      K::whole("yarns[].fibres_per_roving", &YarnSpec::fibres_per_roving, ">= 1", ranges::at_least_one,
+               "number of fibres n of each roving")
+          .shown_default("required"),
+      K::real("yarns[].fibre_radius", &YarnSpec::fibre_radius, "mm", "> 0", ranges::positive,
+              "radius R of every fibre")
+          .shown_default("required"),
+      K::real("yarns[].length", &YarnSpec::length, "mm", "> 0", ranges::positive, "length of every fibre")
+          .shown_default("required"),
+      K::whole("yarns[].elements", &YarnSpec::elements, ">= 1", ranges::at_least_one,
+               "3-node quadratic elements of every fibre")
+          .shown_default("required"),
+      K::doc("yarns[].material", KeyType::string, "", "required", "naming a material",
+             "the material of every fibre"),
+      K::doc("yarns[].start", KeyType::vector, "mm", "[0, 0, 0]", "",
+             "the point of the yarn axis in the fibres' start sections"),
+      K::doc("yarns[].direction", KeyType::vector, "", "[1, 0, 0]", "with nonzero length",
+             "the yarn axis and every fibre's axis; normalised by the reader. The section axes are "
+             "director1 of beams (auto) and direction x director1"),
+      K::doc("yarns[].clearance", KeyType::number, "mm", "0.01 fibre_radius", ">= 0",
+             "gap between neighbouring fibres of the laid yarn (2 R + clearance between axes)"),
+      K::choice(
+          "yarns[].roving_packing", "hexagonal | ring",
+          [](const YarnSpec& y) { return static_cast<int>(y.roving_packing); },
+          [](YarnSpec& y, int i) { y.roving_packing = static_cast<model::RovingPacking>(i); },
+          "the fibres in a roving's section. hexagonal: the n points of a hexagonal lattice "
+          "nearest to a centre, the most compact; ring: n fibres on a circle (docs/yarns.md)"),
+      K::choice(
+          "yarns[].yarn_packing", "ring", [](const YarnSpec& y) { return static_cast<int>(y.yarn_packing); },
+          [](YarnSpec& y, int i) { y.yarn_packing = static_cast<YarnPacking>(i); },
+          "the rovings in the yarn's section. ring: at angles 2 pi k / m around the axis, as close "
+          "as the clearance allows (m = 1: centred)"),
+      K::real("yarns[].bending_factor", &YarnSpec::bending_factor, "", "> 0", ranges::positive,
+              "bending_factor of every fibre (beams[].bending_factor)"),
+      K::flag("yarns[].bodies", &YarnSpec::bodies,
+              "also two rigid bodies per roving, NAME.rK.start and NAME.rK.end, binding the start and "
+              "end sections of its fibres (penalty auto)"),
   };
   return keys;
 }
@@ -608,6 +702,8 @@ struct Scenario {
   std::vector<Material> materials;
   std::vector<BeamSpec> beams;
   std::vector<BodySpec> bodies;
+  /// The yarns the reader laid out (their fibres and bodies are in beams and bodies).
+  std::vector<YarnSpec> yarns;
   std::vector<ConditionSpec> conditions;
   std::vector<StageSpec> stages;
   SolverSettings solver;
@@ -631,8 +727,11 @@ inline std::span<const Key<Scenario>> Scenario::keys() {
       K::doc("units.stress", KeyType::choice, "", "MPa", "MPa", "stress unit"),
       K::doc("units.time", KeyType::choice, "", "s", "s", "time unit"),
       K::doc("materials", KeyType::list, "", "required", "non-empty", "the isotropic elastic materials"),
-      K::doc("beams", KeyType::list, "", "required", "non-empty",
+      K::doc("beams", KeyType::list, "", "required without yarns", "non-empty without yarns",
              "the beams, each straight in its reference configuration"),
+      K::doc("yarns", KeyType::list, "", "[]", "",
+             "twisted yarns laid out from a few numbers, written as beams (after those of beams) and "
+             "rigid bodies (docs/yarns.md)"),
       K::doc("bodies", KeyType::list, "", "[]", "",
              "rigid bodies, each bound to fibre end sections by averaged conditions (docs/bodies.md)"),
       K::doc("conditions", KeyType::list, "", "[]", "",

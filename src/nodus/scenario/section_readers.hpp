@@ -1,8 +1,8 @@
 #pragma once
 /// The readers of the sections of a scenario file, each turning one part of the YAML tree into its part of
 /// Scenario, with the one-line messages of Reader. Internal to the scenario module: model_readers.cpp
-/// (materials, beams, conditions), loading_readers.cpp (stages, branches), settings_readers.cpp (units,
-/// solver, output, contact).
+/// (materials, beams, conditions), yarn_readers.cpp (yarns), loading_readers.cpp (stages, branches),
+/// settings_readers.cpp (units, solver, output, contact).
 
 #include <map>
 #include <optional>
@@ -86,6 +86,12 @@ std::vector<Material> read_materials(const Reader& reader, const MapView& top, N
 
 std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const NameTable& materials,
                                  NameTable& names);
+
+/// Reads `yarns` (yarn_readers.cpp), if present: each yarn checked, then appended with its fibres and
+/// bodies (append_yarn) to `scenario`, the fibres' names added to `beam_names`. Without beams in the file
+/// the list must not be empty.
+void read_yarns(const Reader& reader, const MapView& top, const NameTable& materials, NameTable& beam_names,
+                Scenario& scenario);
 
 /// The `bodies` section (empty if absent). Body names go to `names`.
 std::vector<BodySpec> read_bodies(const Reader& reader, const MapView& top, const NameTable& beam_names,

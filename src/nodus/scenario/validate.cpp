@@ -15,6 +15,7 @@
 #include "nodus/scenario/keys.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/scenario/section_readers.hpp"
+#include "nodus/scenario/yarn.hpp"
 
 namespace nodus::scenario {
 
@@ -176,6 +177,73 @@ void check_bodies(const Checker& check, const Scenario& s) {
     for (const ConditionSpec& condition : s.conditions)
       if (condition.name == body.name)
         check.fail(at + ".name", "a name unique among conditions and bodies", body.name);
+  }
+}
+
+/// The yarns: their keys, and their fibres and bodies where append_yarn put them, as it makes them.
+void check_yarns(const Checker& check, const Scenario& s) {
+  check.names(
+      names_of(s.yarns), [](std::size_t i) { return fmt::format("yarns[{}].name", i); }, "yarns[].name",
+      "yarns");
+  for (std::size_t y = 0; y < s.yarns.size(); ++y) {
+    const YarnSpec& yarn = s.yarns[y];
+    const std::string at = fmt::format("yarns[{}]", y);
+    check.keys(YarnSpec::keys(), yarn, "yarns[]", at);
+    check.index(at + ".material", yarn.material, s.materials.size(), "materials");
+    if (yarn.elements > kMaxElements) {
+      check.fail(at + ".elements",
+                 fmt::format("{}, at most {}", expected_text(scenario_key("yarns[].elements")), kMaxElements),
+                 std::to_string(yarn.elements));
+    }
+    if (static_cast<long long>(yarn.rovings) * yarn.fibres_per_roving > kMaxYarnFibres) {
+      check.fail(
+          at + ".fibres_per_roving",
+          fmt::format("{}, with rovings x fibres_per_roving at most {} (rovings: {})",
+                      expected_text(scenario_key("yarns[].fibres_per_roving")), kMaxYarnFibres, yarn.rovings),
+          std::to_string(yarn.fibres_per_roving));
+    }
+    if (!yarn.start.allFinite()) check.fail_key(at + ".start", "yarns[].start", format_vec(yarn.start));
+    if (!yarn.direction.allFinite() || std::abs(yarn.direction.norm() - 1.0) > kUnitTolerance)
+      check.fail(at + ".direction", "a list of 3 numbers of length 1 (the reader normalises it)",
+                 format_vec(yarn.direction));
+    if (yarn.clearance && !(std::isfinite(*yarn.clearance) && *yarn.clearance >= 0.0))
+      check.fail_key(at + ".clearance", "yarns[].clearance", format_number(*yarn.clearance));
+
+    const std::vector<BeamSpec> beams = yarn_beams(yarn);
+    const auto beam_at = [&](std::size_t i) { return static_cast<std::size_t>(yarn.first_beam) + i; };
+    if (yarn.first_beam < 0 || beam_at(beams.size()) > s.beams.size())
+      check.fail(at + ".first_beam",
+                 fmt::format("the index of its first fibre in beams, with room for {}", beams.size()),
+                 std::to_string(yarn.first_beam));
+    for (std::size_t i = 0; i < beams.size(); ++i) {
+      const BeamSpec& want = beams[i];
+      const BeamSpec& got = s.beams[beam_at(i)];
+      if (got.name != want.name || got.material != want.material || got.radius != want.radius ||
+          got.length != want.length || got.elements != want.elements || got.start != want.start ||
+          got.direction != want.direction || got.director1 != want.director1 ||
+          got.bending_factor != want.bending_factor)
+        check.fail(fmt::format("beams[{}]", beam_at(i)),
+                   fmt::format("fibre {} of yarn {} as append_yarn makes it", want.name, yarn.name),
+                   got.name);
+    }
+    const std::vector<BodySpec> bodies = yarn_bodies(yarn, yarn.first_beam);
+    const auto body_at = [&](std::size_t i) { return static_cast<std::size_t>(yarn.first_body) + i; };
+    if (yarn.first_body < 0 || body_at(bodies.size()) > s.bodies.size())
+      check.fail(at + ".first_body",
+                 fmt::format("the index of its first body in bodies, with room for {}", bodies.size()),
+                 std::to_string(yarn.first_body));
+    for (std::size_t i = 0; i < bodies.size(); ++i) {
+      const BodySpec& want = bodies[i];
+      const BodySpec& got = s.bodies[body_at(i)];
+      const bool same_sections = got.sections.size() == want.sections.size() &&
+                                 std::equal(got.sections.begin(), got.sections.end(), want.sections.begin(),
+                                            [](const SectionRef& a, const SectionRef& b) {
+                                              return a.beam == b.beam && a.node == b.node;
+                                            });
+      if (got.name != want.name || !same_sections)
+        check.fail(fmt::format("bodies[{}]", body_at(i)),
+                   fmt::format("body {} of yarn {} as append_yarn makes it", want.name, yarn.name), got.name);
+    }
   }
 }
 
@@ -426,6 +494,7 @@ void validate(const Scenario& s) {
   if (s.beams.empty()) check.fail_key("beams", "beams", "[]");
   if (s.stages.empty()) check.fail_key("stages", "stages", "[]");
   check_beams(check, s);
+  check_yarns(check, s);  // before the bodies: a yarn's body is reported as the yarn's
   check_bodies(check, s);
   AxisCheck axes(check);
   check_conditions(check, s, axes);
