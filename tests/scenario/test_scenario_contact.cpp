@@ -74,7 +74,7 @@ void expect_mechanics_defaults(const ContactSettings& contact) {
   EXPECT_EQ(contact.friction, 0.0);
   EXPECT_EQ(contact.max_reversible_slip, 0.0);
   EXPECT_EQ(contact.friction_tangent, FrictionTangent::frozen);  // symmetric, as in the paper
-  EXPECT_EQ(contact.particles, ContactParticles::automatic);     // facing without friction, else fixed
+  EXPECT_FALSE(contact.facing_particles);                        // the paper's fixed particles
   EXPECT_EQ(contact.max_detections, 4);
   EXPECT_EQ(contact.max_normal_iterations, 6);
   EXPECT_EQ(contact.normal_tolerance, 1e-3);
@@ -141,7 +141,7 @@ solver: {linear_solver: umfpack}
   EXPECT_DOUBLE_EQ(contact.friction, 0.3);
   EXPECT_DOUBLE_EQ(contact.max_reversible_slip, 0.002);
   EXPECT_EQ(contact.friction_tangent, FrictionTangent::varying);
-  EXPECT_EQ(contact.particles, ContactParticles::facing);
+  EXPECT_TRUE(contact.facing_particles);
   EXPECT_EQ(contact.max_detections, 2);
   EXPECT_EQ(contact.max_normal_iterations, 10);
   EXPECT_DOUBLE_EQ(contact.normal_tolerance, 1e-4);
@@ -315,7 +315,7 @@ TEST(ScenarioContactErrors, NonPositivePenaltyAndMechanicsLengths) {
   EXPECT_EQ(error_of("contact:\n  max_penetration: 0\n"),
             "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got 0");
   EXPECT_EQ(error_of("contact:\n  particles: moving\n"),
-            "knot.yaml:26: contact.particles: expected one of auto | fixed | facing, got moving");
+            "knot.yaml:26: contact.particles: expected one of fixed | facing, got moving");
   EXPECT_EQ(error_of("contact:\n  regularization: -1e-4\n"),
             "knot.yaml:26: contact.regularization: expected a number > 0 or auto (mm), got -1e-4");
   EXPECT_EQ(error_of("contact:\n  beams: [rod]\n  max_reversible_slip: 0\n"),
@@ -480,7 +480,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  friction: 0\n"
                        "  max_reversible_slip: auto  # mm\n"
                        "  friction_tangent: frozen\n"
-                       "  particles: auto\n"
+                       "  particles: fixed\n"
                        "  max_detections: 4\n"
                        "  max_normal_iterations: 6\n"
                        "  normal_tolerance: 0.001  # rad\n"))
@@ -544,7 +544,7 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.friction, b.friction) << section;
     EXPECT_EQ(a.max_reversible_slip, b.max_reversible_slip) << section;
     EXPECT_EQ(a.friction_tangent, b.friction_tangent) << section;
-    EXPECT_EQ(a.particles, b.particles) << section;
+    EXPECT_EQ(a.facing_particles, b.facing_particles) << section;
     EXPECT_EQ(a.max_detections, b.max_detections) << section;
     EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;
     EXPECT_EQ(a.normal_tolerance, b.normal_tolerance) << section;

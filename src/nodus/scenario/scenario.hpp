@@ -430,13 +430,6 @@ enum class FrictionTangent {
   varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack)
 };
 
-/// Where the contact forces act during Newton (contact.particles; docs/contact.md).
-enum class ContactParticles {
-  automatic,  ///< `auto`: facing without friction, fixed with friction
-  fixed,      ///< the paper's material particles, placed at detection (Eq. 37-40)
-  facing,     ///< at each evaluation, the points of the section borders that face each other along the normal
-};
-
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
 /// penalty) of 0 means "auto": derived from the radii and element lengths when the simulation starts (the
 /// library takes any value <= 0 so; validate() refuses negative ones, as the reader does).
@@ -457,11 +450,9 @@ struct ContactSettings {
   double friction = 0.0;             ///< mu [-], >= 0
   double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
   FrictionTangent friction_tangent = FrictionTangent::frozen;
-  /// Where the contact forces act during Newton (contact.particles). auto: at the facing points without
-  /// friction (fixed material particles would give every section a torsional stiffness -R R_N per particle
-  /// that nothing opposes: the double helix buckled in torsion above 7 degrees), at the paper's fixed
-  /// particles with friction (whose stick stiffness outweighs it).
-  ContactParticles particles = ContactParticles::automatic;
+  /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
+  /// paper's fixed material particles (fixed).
+  bool facing_particles = false;
   int max_detections = 4;          ///< loop 2: detections of contact elements per step, >= 1
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
   double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
@@ -538,15 +529,14 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           "R_N varying, not symmetric: needs solver.linear_solver: umfpack "
           "(docs/contact.md)"),
       K::choice(
-          "contact.particles", "auto | fixed | facing",
-          [](const ContactSettings& c) { return static_cast<int>(c.particles); },
-          [](ContactSettings& c, int i) { c.particles = static_cast<ContactParticles>(i); },
+          "contact.particles", "fixed | facing",
+          [](const ContactSettings& c) { return c.facing_particles ? 1 : 0; },
+          [](ContactSettings& c, int i) { c.facing_particles = i == 1; },
           "where the contact forces act during Newton. fixed: the paper's particles, "
           "material points of the section borders placed at detection (Eq. 37-40). facing: "
           "at each evaluation, the points of the borders that face each other along the "
           "normal (no spurious torsional stiffness from the lever arm of a turned section; "
-          "for tightened knots). auto: facing without friction, fixed with friction "
-          "(docs/contact.md)"),
+          "for tightened knots)"),
       K::whole("contact.max_detections", &ContactSettings::max_detections, ">= 1", ranges::at_least_one,
                "loop 2 of the global algorithm (Sect. 6): at most this many detections of the "
                "contact elements per load step"),

@@ -27,9 +27,8 @@ struct ContactLawSettings {
   /// Linearise friction with R_N varying (a non-symmetric tangent, needs an LU solver;
   /// contact.friction_tangent: varying); false: R_N held fixed in the friction tangent (symmetric).
   bool friction_normal_coupling = false;
-  /// Particles at the facing points of the sections (contact.particles: facing, or auto without friction);
-  /// false: fixed particles. The default is that of contact.particles: auto with friction's default, none.
-  bool facing_particles = true;
+  /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
+  bool facing_particles = false;
   int max_detections = 4;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]

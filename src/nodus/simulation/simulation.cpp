@@ -142,11 +142,7 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
   // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack) only.
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
-  // auto: facing without friction. Fixed particles then leave a torsional stiffness -R R_N per particle (the
-  // lever arm of a turned section) that nothing opposes; with friction the stick stiffness, of order
-  // mu R_N R^2 / g_rev_max per particle, outweighs it, and the paper's fixed particles are kept.
-  laws.facing_particles = c.particles == scenario::ContactParticles::facing ||
-                          (c.particles == scenario::ContactParticles::automatic && !laws.friction);
+  laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
   laws.max_normal_iterations = c.max_normal_iterations;
   laws.normal_tolerance = c.normal_tolerance;
