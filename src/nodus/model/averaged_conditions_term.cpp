@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <limits>
+#include <numbers>
 
 #include "nodus/model/rotation_vector.hpp"
 #include "nodus/solver/sparse_assembler.hpp"
@@ -44,7 +45,8 @@ AveragedConditionsTerm::AveragedConditionsTerm(const Model& model, const std::ve
       s.g2 = x0.segment<3>(s.dof + 6);
       s.w = 0.25 * beam.radius() * beam.radius();
       body.j += s.a.squaredNorm() + 2.0 * s.w;
-      stiffness += beam.element_properties(1).stiffness(beam::kE33, beam::kE33) / beam.element_length();
+      stiffness += beam.definition().material.young_modulus * std::numbers::pi * beam.radius() *
+                   beam.radius() / beam.element_length();
       body.sections.push_back(s);
       body.blocks.push_back(node);
     }
@@ -212,6 +214,7 @@ void AveragedConditionsTerm::add(const TermState& state, Eigen::VectorXd& residu
                                  solver::SparseAssembler* tangent) {
   roundoff_ = 0.0;
   tie_forces_.assign(bodies_.size(), 0.0);
+  resultants_.assign(bodies_.size(), BodyResultant{});
   Eigen::MatrixXd h, h_tie;
   for (std::size_t b = 0; b < bodies_.size(); ++b) {
     const Body& body = bodies_[b];
@@ -219,6 +222,7 @@ void AveragedConditionsTerm::add(const TermState& state, Eigen::VectorXd& residu
     const Eigen::VectorXd tie = tie_gradient(body, state.x, state.x_committed, tangent ? &h_tie : nullptr);
     tie_forces_[b] = tie.tail(tie.size() - 6).norm();
     g += tie;
+    resultants_[b] = section_resultant(body, state.x, g);
     if (tangent) h += h_tie;
     residual.segment<6>(body.dof) += g.head<6>();
     double moved = (state.x.segment<3>(body.dof) - body.c0).norm();
@@ -249,7 +253,11 @@ double AveragedConditionsTerm::error(int b, const Eigen::VectorXd& x) const {
 
 BodyResultant AveragedConditionsTerm::resultant(int b, const Eigen::VectorXd& x) const {
   const Body& body = bodies_.at(static_cast<std::size_t>(b));
-  const Eigen::VectorXd g = gradient(body, x, nullptr);
+  return section_resultant(body, x, gradient(body, x, nullptr));
+}
+
+BodyResultant AveragedConditionsTerm::section_resultant(const Body& body, const Eigen::VectorXd& x,
+                                                        const Eigen::VectorXd& g) const {
   const Vec3 c = x.segment<3>(body.dof);
   BodyResultant out;
   for (std::size_t i = 0; i < body.sections.size(); ++i) {

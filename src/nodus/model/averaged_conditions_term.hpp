@@ -21,8 +21,8 @@
 ///
 ///   W = (k n / 2) (|C_c|^2 + |C_t|^2 / J),   J = (1/n) sum_i (|a_i|^2 + 2 w_i)   [mm^2],
 ///
-/// k = factor * (mean E A / h of the bound sections) [N/mm]. sqrt(|C_c|^2 + |C_t|^2 / J) [mm] is the error
-/// the penalty leaves (error()).
+/// k = factor * (mean E A / h of the bound sections, A = pi R^2) [N/mm]. sqrt(|C_c|^2 + |C_t|^2 / J) [mm] is
+/// the error the penalty leaves (error()).
 ///
 /// What the conditions leave free costs nothing, and a section held by nothing else (a fibre that touches no
 /// other yet) then makes the tangent singular: n sections spreading radially, or turning about their own
@@ -72,8 +72,14 @@ class AveragedConditionsTerm final : public Term {
   /// sqrt(|C_c|^2 + |C_t|^2 / J) of body b at x [mm]: how far the penalty lets the body stray from the best
   /// fit of its sections.
   double error(int b, const Eigen::VectorXd& x) const;
-  /// The force and moment body b exerts on its sections at x.
+  /// The force and moment body b exerts on its sections at x through the conditions (the tie left out).
   BodyResultant resultant(int b, const Eigen::VectorXd& x) const;
+  /// The force and moment body b exerted on its sections at the last add(), conditions and tie (in a run:
+  /// at the converged state of the last step).
+  BodyResultant last_resultant(int b) const {
+    return static_cast<std::size_t>(b) < resultants_.size() ? resultants_[static_cast<std::size_t>(b)]
+                                                            : BodyResultant{};
+  }
   /// k of body b [N/mm].
   double penalty(int b) const { return bodies_[static_cast<std::size_t>(b)].k; }
   /// |force of the tie| over the sections of body b at x, the last converged state being `committed` [N].
@@ -109,7 +115,10 @@ class AveragedConditionsTerm final : public Term {
                                Eigen::MatrixXd* hessian) const;
 
   std::vector<Body> bodies_;
-  std::vector<double> tie_forces_;  ///< per body, at the last add()
+  std::vector<double> tie_forces_;         ///< per body, at the last add()
+  std::vector<BodyResultant> resultants_;  ///< per body, at the last add()
+  /// The force and moment on the sections of the body's gradient g (over its unknowns) at x.
+  BodyResultant section_resultant(const Body& body, const Eigen::VectorXd& x, const Eigen::VectorXd& g) const;
   double floor_ = 0.0, roundoff_ = 0.0;
 };
 

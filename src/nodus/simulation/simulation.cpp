@@ -427,7 +427,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             record.sections.push_back(
                 conditions_.section_force(c, r.time, problem_->committed_state(), problem_->full_residual()));
           for (int b = 0; b < static_cast<int>(model_.bodies().size()); ++b) {
-            const model::BodyResultant res = averaged_->resultant(b, problem_->committed_state());
+            const model::BodyResultant res = averaged_->last_resultant(b);
             record.bodies.push_back({res.force, res.moment, averaged_->error(b, problem_->committed_state()),
                                      averaged_->last_tie_force(b)});
           }
