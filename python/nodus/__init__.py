@@ -297,8 +297,12 @@ class Simulation:
         return self._sim.zones()
 
     def rigid_bodies(self):
-        """The rigid bodies of the model: none until scenarios can declare them (issue 16)."""
-        return {}
+        """{body name: {'position': (3,) c [mm], 'rotation': (3,) rotation vector theta [rad], 'force': (3,)
+        [N], 'moment': (3,) [N mm] (what the body exerts on its bound sections, moment about c), 'error':
+        the averaged conditions' penalty error [mm], 'tie': the tie's force [N]}} at the last converged step,
+        as the BODY_* columns of steps.csv (docs/bodies.md); {} before the first step or without bodies."""
+        last = self._sim.last_step
+        return {} if last is None else last["bodies"]
 
     def internal_energy(self):
         """Strain energy of the beams in the last converged state [N mm]."""

@@ -59,6 +59,21 @@ py::dict step_dict(const simulation::Simulation& sim, const simulation::StepReco
     reactions[py::str(sim.conditions().name(static_cast<int>(c)))] = f;
   }
   d["reactions"] = reactions;
+  // Rigid bodies (docs/bodies.md): where each is, and what it exerts on its bound sections.
+  py::dict bodies;
+  const Eigen::VectorXd& x = sim.state();
+  for (std::size_t b = 0; b < r.bodies.size(); ++b) {
+    const int dof = sim.model().body_dof(static_cast<int>(b));
+    py::dict body;
+    body["position"] = Eigen::Vector3d(x.segment<3>(dof));
+    body["rotation"] = Eigen::Vector3d(x.segment<3>(dof + 3));
+    body["force"] = Eigen::Vector3d(r.bodies[b].force);
+    body["moment"] = Eigen::Vector3d(r.bodies[b].moment);
+    body["error"] = r.bodies[b].error;
+    body["tie"] = r.bodies[b].tie;
+    bodies[py::str(sim.model().body(static_cast<int>(b)).name)] = body;
+  }
+  d["bodies"] = bodies;
   return d;
 }
 

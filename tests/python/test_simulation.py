@@ -239,3 +239,31 @@ def test_one_step_at_a_time_equals_one_run():
     assert n == whole.steps and stepped.time == whole.time
     np.testing.assert_array_equal(stepped.state, whole.state)
     np.testing.assert_array_equal(stepped.positions, whole.positions)
+
+
+def test_rigid_bodies_equal_the_body_columns_of_steps_csv(tmp_path):
+    """A yarn of three fibres pulled by its end bodies: rigid_bodies() against the BODY_* columns of the command
+    line's steps.csv (10 significant digits), and the body's point moved with its motion."""
+    scenario = nodus.Scenario({
+        "materials": [{"name": "m", "young_modulus": 4000, "poisson_ratio": 0.3}],
+        "yarns": [{"name": "y", "rovings": 3, "fibres_per_roving": 1, "fibre_radius": 0.05, "length": 2,
+                   "elements": 4, "material": "m"}],
+        "conditions": [
+            {"name": "hold", "type": "clamp", "bodies": ["y.r1.start", "y.r2.start", "y.r3.start"]},
+            {"name": "pull", "type": "motion", "bodies": ["y.r1.end", "y.r2.end", "y.r3.end"]}],
+        "stages": [{"name": "stretch", "steps": 2, "motions": {"pull": {"translation": [0.002, 0, 0]}}}],
+    })
+    sim = nodus.Simulation(scenario)
+    assert sim.rigid_bodies() == {}
+    sim.run()
+    bodies = sim.rigid_bodies()
+    assert sorted(bodies) == sorted(f"y.r{k}.{end}" for k in (1, 2, 3) for end in ("start", "end"))
+    last = read_csv(cli_outputs(scenario, tmp_path) / "steps.csv")[-1]
+    for name, body in bodies.items():
+        got = np.concatenate([body["force"], body["moment"], [body["error"], body["tie"]]])
+        want = [float(last[f"{name}_{c}"]) for c in ("fx", "fy", "fz", "mx", "my", "mz", "error", "tie")]
+        np.testing.assert_allclose(got, want, rtol=CONTACT_RTOL, atol=1e-15)
+    end = bodies["y.r1.end"]
+    start = sim.reference_positions[sim.node_beam == 0][-1]  # the fibre's end node, before the pull
+    np.testing.assert_allclose(end["position"][0] - start[0], 0.002, rtol=1e-12)
+    assert end["force"][0] > 0 and bodies["y.r1.start"]["force"][0] < 0
