@@ -108,6 +108,56 @@ TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
   EXPECT_EQ(header[17], "left_fx");
 }
 
+TEST(StepsCsv, BodyColumnsAfterTheConditions) {
+  // Eight columns per body, after the six of every condition, in the order of the names given.
+  const std::string head =
+      "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
+      "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
+      "loops_converged";
+  EXPECT_EQ(
+      steps_csv_header({"hold"}, {"y.r1.start", "cap"}),
+      head +
+          ",hold_fx,hold_fy,hold_fz,hold_mx,hold_my,hold_mz,"
+          "y.r1.start_fx,y.r1.start_fy,y.r1.start_fz,y.r1.start_mx,y.r1.start_my,y.r1.start_mz,"
+          "y.r1.start_error,y.r1.start_tie,cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie");
+  EXPECT_EQ(steps_csv_header({}, {"cap"}),
+            head + ",cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie");
+  // A body name that needs quoting is quoted as a condition name is.
+  EXPECT_EQ(steps_csv_header({}, {"a,b"}).substr(head.size()),
+            ",\"a,b_fx\",\"a,b_fy\",\"a,b_fz\",\"a,b_mx\",\"a,b_my\",\"a,b_mz\",\"a,b_error\",\"a,b_tie\"");
+
+  // The row: force [N], moment [N mm], error [mm], tie [N] of each body, with ten significant digits.
+  simulation::StepRecord r;
+  r.step = 3;
+  r.time = 0.5;
+  loading::SectionForce s;
+  s.force = Eigen::Vector3d(1, 0, 0);
+  r.sections = {s};
+  simulation::BodyRecord b;
+  b.force = Eigen::Vector3d(-1, 2.5, 1.0 / 3.0);
+  b.moment = Eigen::Vector3d(0, -1e-20, 1234.5);
+  b.error = 2.0 / 3.0 * 1e-6;
+  b.tie = 1e-9;
+  r.bodies = {b};
+  EXPECT_EQ(steps_csv_row(r, "twist", 1, 1),
+            "3,twist,0.5,0,0,0,0,0,0,0,0,0,0,0,0,0,1,1,0,0,0,0,0,"
+            "-1,2.5,0.3333333333,0,-1e-20,1234.5,6.666666667e-07,1e-09");
+  // Every header column has its field; a body missing from the record gives empty fields.
+  const auto header = testing::split(steps_csv_header({"hold"}, {"y.r1.start", "cap"}), ',');
+  const auto fields = testing::split(steps_csv_row(r, "twist", 1, 2), ',');
+  ASSERT_EQ(fields.size(), header.size());
+  EXPECT_EQ(header[23], "y.r1.start_fx");
+  EXPECT_EQ(fields[23], "-1");
+  EXPECT_EQ(header[29], "y.r1.start_error");
+  EXPECT_EQ(fields[29], "6.666666667e-07");
+  EXPECT_EQ(header[30], "y.r1.start_tie");
+  EXPECT_EQ(fields[30], "1e-09");
+  for (std::size_t k = 31; k < fields.size(); ++k) EXPECT_EQ(fields[k], "") << header[k];
+  // Without bodies the row is what it was: no body fields.
+  EXPECT_EQ(steps_csv_row(r, "twist", 1), steps_csv_row(r, "twist", 1, 0));
+  EXPECT_EQ(testing::split(steps_csv_row(r, "twist", 1), ',').size(), 17u + 6u);
+}
+
 TEST(Summary, JsonHoldsEveryField) {
   SummaryData d;
   d.dofs = 72;

@@ -218,6 +218,10 @@ std::string describe(const Scenario& scenario) {
         line("    penalty: auto  # 1e3");
         return true;
       }
+      if (leaf == "tie" && body.tie <= 0.0) {
+        line("    tie: auto  # 1e-6");
+        return true;
+      }
       return !key.scalar();
     });
   }

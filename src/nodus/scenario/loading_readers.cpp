@@ -178,6 +178,9 @@ std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, cons
                     "a condition that is not rigid (a tool beam stays where its motion puts it; "
                     "take it out of contact with contact_off)");
       }
+      const ConditionSpec& released = conditions[static_cast<std::size_t>(stage.release[i])];
+      if (released.bodies.size() > 1 && released.type != ConditionType::load)
+        reader.fail(reader.list(*release, false)[i], kReleaseOnSeveralBodiesExpected);
     }
     const auto off = map.get("contact_off");
     stage.contact_off = read_contact_beams(reader, off, beam_names, contact, "contact_off");

@@ -32,6 +32,10 @@ constexpr std::string_view kSeparationDistanceExpected =
     "> proximity_distance (neighbouring parts of a beam would be paired)";
 constexpr std::string_view kStabilizationEndExpected =
     "0 when stabilization is 0 (the decay is geometric from stabilization)";
+// A clamp or motion of several bodies holds them together; it is not released as a whole.
+constexpr std::string_view kReleaseOnSeveralBodiesExpected =
+    "a condition on one body (a clamp or motion of several bodies is released body by body: give each "
+    "its own condition)";
 // CHOLMOD reads one triangle of the tangent: the varying friction tangent, not symmetric, needs LU. Asked
 // for explicitly rather than switched on behind the user's back, so that the file says which solver runs.
 constexpr std::string_view kFrictionTangentExpected =

@@ -396,10 +396,7 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
             "contact with contact_off)",
             condition.name);
       if (condition.bodies.size() > 1 && condition.type != ConditionType::load)
-        check.fail(path,
-                   "a condition on one body (a motion of several bodies is released body by body: give "
-                   "each its own condition)",
-                   condition.name);
+        check.fail(path, kReleaseOnSeveralBodiesExpected, condition.name);
     }
     check_contact_list(check, s, stage.contact_off, at, "contact_off");
     check_contact_list(check, s, stage.contact_on, at, "contact_on");

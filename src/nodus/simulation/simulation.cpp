@@ -19,6 +19,8 @@ namespace nodus::simulation {
 namespace {
 
 constexpr double kDegree = std::numbers::pi / 180.0;
+/// A rigid body's six unknowns by the words of conditions[].dofs (scenario::BodyDof order).
+constexpr const char* kBodyDofNames[] = {"x", "y", "z", "rx", "ry", "rz"};
 
 model::Model build_model(const scenario::Scenario& s) {
   model::Model model(s.solver.gauss_points, s.solver.fold_stiffness);
@@ -103,12 +105,12 @@ void check_stages(const scenario::Scenario& s, const model::Model& model,
             if (!spec.body_dofs[static_cast<std::size_t>(d)]) continue;
             int& o = owner[static_cast<std::size_t>(model.body_dof(b) + d)];
             if (o >= 0)
-              throw scenario::ScenarioError(
-                  fmt::format("{}:{}: conditions[{}].dofs: expected no unknown prescribed by two active "
-                              "conditions, got '{}' "
-                              "and '{}' both prescribing unknown {} of body '{}' in stage '{}'{}",
-                              s.path, spec.line, c, s.conditions[static_cast<std::size_t>(o)].name, spec.name,
-                              d, s.bodies[static_cast<std::size_t>(b)].name, stage.name, where));
+              throw scenario::ScenarioError(fmt::format(
+                  "{}:{}: conditions[{}].dofs: expected no unknown prescribed by two active "
+                  "conditions, got '{}' "
+                  "and '{}' both prescribing unknown {} of body '{}' in stage '{}'{}",
+                  s.path, spec.line, c, s.conditions[static_cast<std::size_t>(o)].name, spec.name,
+                  kBodyDofNames[d], s.bodies[static_cast<std::size_t>(b)].name, stage.name, where));
             o = static_cast<int>(c);
           }
         continue;
