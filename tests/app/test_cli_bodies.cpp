@@ -141,7 +141,7 @@ stages:
   const std::map<std::string, double> row = last_row(csv);
   const double f = 0.01;
   // What a body passes on differs from what acts on it by the force of its rearrangement tie (steps.csv's
-  // *_tie, about 2e-7 N here, checked below) and by Newton's residual (< 1e-10 N); 1e-4 F = 1e-6 N bounds
+  // *_tie, checked below) and by Newton's residual (< 1e-10 N); 1e-4 F = 1e-6 N bounds
   // both with room.
   const double tol = 1e-4 * f;
   EXPECT_NEAR(row.at("pull_fz"), f, 1e-15);

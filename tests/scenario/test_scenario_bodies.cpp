@@ -379,7 +379,7 @@ stages:
   EXPECT_EQ(state_fingerprint_text(again, 2), state_fingerprint_text(original, 2)) << echo;
   // The yarn's bodies are the yarn's in the echo, not written out again.
   EXPECT_EQ(echo.find("name: y.r1.start"), std::string::npos) << echo;
-  EXPECT_NE(echo.find("    penalty: auto  # 1e3\n    tie: auto  # 1e-6\n"), std::string::npos) << echo;
+  EXPECT_NE(echo.find("    penalty: auto  # 1e3\n    tie: auto  # 1e-10\n"), std::string::npos) << echo;
   ASSERT_EQ(again.bodies.size(), original.bodies.size());
   for (std::size_t b = 0; b < original.bodies.size(); ++b) {
     EXPECT_EQ(again.bodies[b].name, original.bodies[b].name);

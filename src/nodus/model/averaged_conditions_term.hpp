@@ -59,7 +59,7 @@ class AveragedConditionsTerm final : public Term {
                          const std::vector<double>& ties = {});
 
   static constexpr double kDefaultPenalty = 1e3;
-  static constexpr double kDefaultTie = 1e-6;
+  static constexpr double kDefaultTie = 1e-10;
 
   std::string_view name() const override { return "averaged conditions of rigid bodies"; }
   void couplings(std::vector<std::vector<int>>& groups) const override;

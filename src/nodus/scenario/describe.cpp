@@ -219,7 +219,7 @@ std::string describe(const Scenario& scenario) {
         return true;
       }
       if (leaf == "tie" && body.tie <= 0.0) {
-        line("    tie: auto  # 1e-6");
+        line("    tie: auto  # 1e-10");
         return true;
       }
       return !key.scalar();

@@ -134,7 +134,7 @@ inline std::span<const Key<BodySpec>> BodySpec::keys() {
               "stiffness, as a fraction of the penalty, of the tie that resists each step's "
               "rearrangement of the bound sections relative to the body (zero at rest and for rigid "
               "motions), so that sections held by nothing else do not make the tangent singular; its "
-              "force is written to steps.csv. auto: 1e-6")
+              "force is written to steps.csv. auto: 1e-10")
           .or_auto(),
   };
   return keys;
