@@ -23,6 +23,8 @@ constexpr double kSetTolerance = 1e-3;
 
 /// A converged step whose largest penetration exceeds this many p_max is rejected (cut back).
 constexpr double kMaxPenetrationRatio = 10.0;
+/// The smallest penalty the adjustment of loop 3 gives a zone, as a fraction of the initial one.
+constexpr double kPenaltyFloor = 1e-4;
 
 }  // namespace
 
@@ -86,11 +88,17 @@ bool ContactLoops::adjust_penalties() {
     // load to come.
     if (!(penetration > 1e-3 * laws_.max_penetration)) continue;
     if (penetration >= 0.5 * laws_.max_penetration && penetration <= laws_.max_penetration) continue;
-    off = true;
     // Eq. 54, in the direction that makes the penetration approach the aim: the new coefficient gives at the
     // aim the reaction the old one gives at the penetration reached (the law is linear in k_c).
     const double factor = std::clamp(contact::normal_reaction(unit, -penetration) / target, 1e-3, 1e3);
-    penalty[z] *= factor;
+    // Not below kPenaltyFloor of the initial penalty: a zone pressed by the kinematics rather than by a load
+    // (fibres of a yarn that the twist brings together) keeps its penetration as the penalty falls, and Eq. 54
+    // would divide it by up to 1e3 at every pass, to 1e-25 of the initial value within a few steps, after
+    // which the surfaces pass through each other (docs/contact.md). A zone held at the floor is settled.
+    const double adjusted = std::max(penalty[z] * factor, kPenaltyFloor * laws_.penalty);
+    if (adjusted == penalty[z]) continue;
+    off = true;
+    penalty[z] = adjusted;
   }
   return off;
 }
