@@ -9,12 +9,16 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
 #include "nodus/analysis/knot_metrics.hpp"
 #include "nodus/analysis/yarn_metrics.hpp"
+#include "nodus/beam/strain_measures.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -101,6 +105,81 @@ TEST(YarnTwist, ThreeFibresWindIntoAHelixWithoutPassingThroughEachOther) {
         "rate %.4f rad/mm\n",
         b, fit.radius, fit.radius_spread, expected, penetration, fit.rate);
     EXPECT_NEAR(fit.radius, expected, 0.1 * p_max);
+  }
+  // The strand against the equilibrium of helical rods (docs/verification/double_helix.md, sections 3, 4
+  // and 6, with three plies): each fibre is a helix of radius rho and winding rate k, tan(alpha) = rho k,
+  // curvature kappa = rho k^2 / (1 + rho^2 k^2), torsion tau = k / (1 + rho^2 k^2), carrying the tension
+  // T = lambda E A e33 and the twisting moment M3 = (E/2) J Omega of its section (Omega = q21 - q12, the
+  // directors' twist), and bent with B = E I. The axial force and torque of the three through any section,
+  // F = 3 (T cos(alpha) + N_b sin(alpha)), M = 3 (rho (T sin(alpha) - N_b cos(alpha)) + B kappa sin(alpha)
+  // + M3 cos(alpha)), N_b = kappa (M3 - B tau), are those the end bodies carry; and the outward line load
+  // that holds each fibre on its helix, p = kappa T + kappa tau (B tau - M3) per unit length, comes from its
+  // two neighbours pressing along the lines of centres, 30 degrees either side of the radial direction:
+  // p = 2 q cos(30 deg) = sqrt(3) q, q the line load between two fibres.
+  {
+    const double area = std::numbers::pi * kRadius * kRadius, inertia = area * kRadius * kRadius / 4;
+    const double young = 4000.0, bend = young * inertia, torsion = 0.5 * young * 2 * inertia;
+    const Eigen::MatrixXd strains = sim.model().element_strains(x);
+    double e33 = 0.0, omega = 0.0, rho = 0.0, k = 0.0;
+    int elements = 0;
+    for (int b = 0; b < 3; ++b) {
+      const analysis::HelixFit fit = analysis::fit_helix(
+          sim.model(), x, b, Eigen::Vector3d::Zero(), Eigen::Vector3d::UnitX(), kLength / 3, 2 * kLength / 3);
+      rho += fit.radius / 3;
+      k += fit.rate / 3;
+      const beam::Beam& beam = sim.model().beam(b);
+      for (int e = 0; e < beam.num_elements(); ++e) {
+        const double centre = (e + 0.5) * beam.element_length();
+        if (centre < kLength / 3 || centre > 2 * kLength / 3) continue;
+        const int g = sim.model().first_element(b) + e;
+        e33 += strains(beam::kE33, g);
+        omega += strains(beam::kQ21, g) - strains(beam::kQ12, g);
+        ++elements;
+      }
+    }
+    e33 /= elements;
+    omega /= elements;
+    const double stretch = std::sqrt(1 + 2 * e33);
+    const double tension = stretch * young * area * e33, m3 = torsion * omega;
+    const double alpha = std::atan(rho * k), kappa = rho * k * k / (1 + rho * rho * k * k),
+                 tau = k / (1 + rho * rho * k * k);
+    const double n_b = kappa * (m3 - bend * tau);
+    const double force_ref = 3 * (tension * std::cos(alpha) + n_b * std::sin(alpha));
+    const double moment_ref = 3 * (rho * (tension * std::sin(alpha) - n_b * std::cos(alpha)) +
+                                   bend * kappa * std::sin(alpha) + m3 * std::cos(alpha));
+    const double load_ref = kappa * tension + kappa * tau * (bend * tau - m3);
+    double force = 0.0, moment = 0.0;
+    for (int b = 1; b < 6; b += 2) {
+      const simulation::BodyRecord& body = gaps.last.bodies[static_cast<std::size_t>(b)];
+      const Eigen::Vector3d c = x.segment<3>(sim.model().body_dof(b));
+      force += body.force.x();
+      moment += Eigen::Vector3d(0, c.y(), c.z()).cross(body.force).x() + body.moment.x();
+    }
+    // q: the mean R_N of the middle third's contact elements over their mean spacing along fibre I (current
+    // length: reference spacing times the stretch).
+    std::vector<std::pair<double, double>> along;  // (abscissa on I, R_N), zone by zone
+    double sum = 0.0, spacing = 0.0;
+    int counted_spacing = 0, counted_elements = 0;
+    for (Eigen::Index e = 0; e < table.gap.size(); ++e) {
+      if (table.abscissa_i[e] < kLength / 3 || table.abscissa_i[e] > 2 * kLength / 3) continue;
+      sum += table.normal_force[e];
+      ++counted_elements;
+      if (e > 0 && table.zone[e] == table.zone[e - 1] && table.abscissa_i[e - 1] >= kLength / 3) {
+        spacing += std::abs(table.abscissa_i[e] - table.abscissa_i[e - 1]);
+        ++counted_spacing;
+      }
+    }
+    const double q = (sum / counted_elements) / (stretch * spacing / counted_spacing);
+    std::printf("strand: rho %.6f mm, k %.5f rad/mm, alpha %.3f deg, T %.6f N (e33 %.3e), M3 %.3e N mm\n",
+                rho, k, alpha * 180 / std::numbers::pi, tension, e33, m3);
+    std::printf(
+        "strand: axial force %.6f N, helical rods %.6f N (%+.2e); torque %.6e N mm, helical rods %.6e "
+        "(%+.2e); line load sqrt(3) q %.6f N/mm, helical rods %.6f N/mm (%+.2e)\n",
+        force, force_ref, force / force_ref - 1, moment, moment_ref, moment / moment_ref - 1,
+        std::sqrt(3.0) * q, load_ref, std::sqrt(3.0) * q / load_ref - 1);
+    EXPECT_NEAR(force, force_ref, 0.01 * force_ref);
+    EXPECT_NEAR(moment, moment_ref, 0.01 * std::abs(moment_ref));
+    EXPECT_NEAR(std::sqrt(3.0) * q, load_ref, 0.01 * load_ref);
   }
   // The end bodies, free along the axis, pass their pulls on: 0.05 N each.
   for (int b = 1; b < 6; b += 2)
