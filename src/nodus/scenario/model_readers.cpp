@@ -161,6 +161,25 @@ BodyDofMask read_body_dofs(const Reader& reader, const Field& field) {
   return mask;
 }
 
+/// `force` and `moment` of condition number `index` (load conditions only).
+void read_load_values(const Reader& reader, const MapView& map, int index, MomentAxes& moment_axes,
+                      ConditionSpec& condition) {
+  for (const char* key : {"force", "moment"}) {
+    const auto value = map.get(key);
+    if (!value) continue;
+    if (condition.type != ConditionType::load) {
+      reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
+                                      type_name(condition.type), key));
+    }
+    if (std::string_view(key) == "force") {
+      condition.force = reader.vec(*value);
+    } else {
+      condition.moment = reader.vec(*value);
+      moment_axes.check(reader, index, condition.moment, *value);
+    }
+  }
+}
+
 /// The nine dofs selected by a list of dof items.
 DofMask read_dofs(const Reader& reader, const Field& field) {
   DofMask mask{};
@@ -242,19 +261,7 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
       }
       if (const auto active = map.get("active"))
         read_key(reader, *active, declared(keys, "conditions[].active"), condition);
-      for (const char* key : {"force", "moment"}) {
-        const auto value = map.get(key);
-        if (!value) continue;
-        if (condition.type != ConditionType::load)
-          reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
-                                          type_name(condition.type), key));
-        if (std::string_view(key) == "force") {
-          condition.force = reader.vec(*value);
-        } else {
-          condition.moment = reader.vec(*value);
-          moment_axes.check(reader, static_cast<int>(conditions.size()), condition.moment, *value);
-        }
-      }
+      read_load_values(reader, map, static_cast<int>(conditions.size()), moment_axes, condition);
       conditions.push_back(condition);
       continue;
     }
@@ -311,20 +318,7 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
     if (const auto active = map.get("active"))
       read_key(reader, *active, declared(keys, "conditions[].active"), condition);
 
-    for (const char* key : {"force", "moment"}) {
-      const auto value = map.get(key);
-      if (!value) continue;
-      if (condition.type != ConditionType::load) {
-        reader.fail(*value, fmt::format("no {} on a {} condition ({} is for load conditions only)", key,
-                                        type_name(condition.type), key));
-      }
-      if (std::string_view(key) == "force") {
-        condition.force = reader.vec(*value);
-      } else {
-        condition.moment = reader.vec(*value);
-        moment_axes.check(reader, static_cast<int>(conditions.size()), condition.moment, *value);
-      }
-    }
+    read_load_values(reader, map, static_cast<int>(conditions.size()), moment_axes, condition);
     conditions.push_back(condition);
   }
   return conditions;
