@@ -1,13 +1,12 @@
-// A coarse 3x1 yarn twisted by its rigid bodies (docs/bodies.md, docs/yarns.md; the reference:
-// docs/verification/strand.md): three fibres laid side by side, the start bodies clamped, the end bodies
-// turned about the yarn axis with their sections' orientation held (planetary: the fibres are not twisted
-// about their own axes), free along the axis under a small tension, with contact and friction (the varying
-// friction tangent: the fibres slip as they wind). Checked on every converged step: nothing passes through
-// anything (every pair of fibre axes at least R_I + R_J - 2 p_max apart). At the end: the fibre centres lie
-// on a helix of radius 2 (R s - p / 2) / sqrt(3) about the yarn axis (the three contracted sections, s the
-// directors' length, pressing each other by the penetration p the penalty leaves), and the bodies' tension
-// balances the loads. And the same yarn with its fibres and bodies numbered the other way round gives the
-// same state.
+// A coarse 3x1 yarn twisted by its rigid bodies (docs/bodies.md, docs/yarns.md): three fibres laid side by
+// side, the start bodies clamped, the end bodies turned about the yarn axis with their sections' orientation
+// held (planetary: the fibres are not twisted about their own axes), free along the axis under a small
+// tension, with contact and friction (the varying friction tangent: the fibres slip as they wind). Checked
+// on every converged step: nothing passes through anything (every pair of fibre axes at least R_I + R_J -
+// 2 p_max apart). At the end, against the equilibrium of helical rods with three plies (derived in
+// docs/verification/strand.md): neighbouring axes as close as 2 R s - p, the bodies' axial force and torque,
+// the contact line load; the bodies pass their loads on. And the same yarn with its fibres and bodies
+// numbered the other way round gives the same state.
 #include <cmath>
 #include <cstdio>
 #include <map>
