@@ -13,12 +13,6 @@ namespace {
 using Vec3 = Eigen::Vector3d;
 using Mat3 = Eigen::Matrix3d;
 
-Mat3 skew(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 constexpr int kNode = beam::kNodeDofs;
 constexpr double kEps = std::numeric_limits<double>::epsilon();
 

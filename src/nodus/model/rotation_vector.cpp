@@ -11,12 +11,6 @@ namespace {
 using Mat3 = Eigen::Matrix3d;
 using Vec3 = Eigen::Vector3d;
 
-Mat3 skew(const Vec3& v) {
-  Mat3 m;
-  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
-  return m;
-}
-
 /// s, c and their first two derivatives in t = phi^2.
 struct Coefficients {
   double s, s1, s2, c, c1, c2;
@@ -59,6 +53,12 @@ Coefficients coefficients(double t) {
 }
 
 }  // namespace
+
+Mat3 skew(const Vec3& v) {
+  Mat3 m;
+  m << 0.0, -v.z(), v.y(), v.z(), 0.0, -v.x(), -v.y(), v.x(), 0.0;
+  return m;
+}
 
 Mat3 rotation_matrix(const Vec3& theta) {
   const Coefficients k = coefficients(theta.squaredNorm());

@@ -26,6 +26,9 @@ struct RotationDerivatives {
   std::array<std::array<Eigen::Matrix3d, 3>, 3> second;  ///< d^2 Q / dtheta_k dtheta_l (symmetric in k, l)
 };
 
+/// [v]x, the matrix of the cross product v x .
+Eigen::Matrix3d skew(const Eigen::Vector3d& v);
+
 /// Q(theta).
 Eigen::Matrix3d rotation_matrix(const Eigen::Vector3d& theta);
 

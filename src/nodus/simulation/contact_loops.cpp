@@ -92,8 +92,8 @@ bool ContactLoops::adjust_penalties() {
     // aim the reaction the old one gives at the penetration reached (the law is linear in k_c).
     const double factor = std::clamp(contact::normal_reaction(unit, -penetration) / target, 1e-3, 1e3);
     // Not below kPenaltyFloor of the initial penalty: a zone pressed by the kinematics rather than by a load
-    // (fibres of a yarn that the twist brings together) keeps its penetration as the penalty falls, and Eq. 54
-    // would divide it by up to 1e3 at every pass, to 1e-25 of the initial value within a few steps, after
+    // (fibres of a yarn that the twist brings together) keeps its penetration as the penalty falls, and Eq.
+    // 54 would divide it by up to 1e3 at every pass, to 1e-25 of the initial value within a few steps, after
     // which the surfaces pass through each other (docs/contact.md). A zone held at the floor is settled.
     const double adjusted = std::max(penalty[z] * factor, kPenaltyFloor * laws_.penalty);
     if (adjusted == penalty[z]) continue;
