@@ -40,6 +40,9 @@ Outputs, in DIR/report/ (each written to a temporary name, then renamed):
                                        if it differs from the last stage end), coloured by z, with the
                                        other beams in contact with it (the clamping beams) in grey
   fig15_released_knots.png             each branch's knot seen from +z, nodes with s in [s_a-3, s_b+3]
+  view3d_*.png                         3D views of every stage end and of each branch's released knot:
+                                       tubes, intermediate geometry, normal reactions (Figs. 12, 13, 15,
+                                       16), drawn by scripts/knot_views.py (see there)
 """
 
 import csv
@@ -62,6 +65,9 @@ except ImportError:  # from the source tree: the module built in build/release
 matplotlib.use("Agg")
 import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib import cm, colors  # noqa: E402
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import knot_views  # noqa: E402  (the 3D views, scripts/knot_views.py)
 
 NODE_COLUMNS = ["s", "x", "y", "z"]  # numeric; also `beam`
 CONTACT_COLUMNS = ["zone", "zeta", "abscissa_i", "abscissa_j", "x_i", "y_i", "z_i", "x_j", "y_j", "z_j",
@@ -524,6 +530,11 @@ def report(run_dir):
                                   out_dir / "fig12_stages.png", "Forming and tightening, seen from +z"))
     else:
         print(f"note: {run_dir / 'stages'} missing: fig12 skipped")
+
+    try:
+        written += knot_views.render_run(run_dir, out_dir, radius=radius)
+    except knot_views.ViewError as e:
+        print(f"note: no 3D views: {e}")
 
     print(markdown_table(rows))
     print()

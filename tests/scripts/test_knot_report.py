@@ -24,8 +24,8 @@ Checked against what:
   end to end       a fake run folder (tightened state, branch mu_0.30, one stage). The script exits 0 and
                    writes knot_report.csv: one row per state, friction 0.3 for the branch, pull force
                    |(0.3, 0.4, 0)| = 0.5 from the last row of steps.csv, tail angles 120 and 150, loop
-                   radius 0.8. It also writes the reactions CSVs and the four PNG figures, and leaves no
-                   temporary file.
+                   radius 0.8. It also writes the reactions CSVs, the four PNG figures and the three 3D
+                   views (scripts/knot_views.py), and leaves no temporary file.
   bad input        a missing contact_final.csv or a missing column: the exit status is not 0, and stderr
                    holds one line that names the file.
 
@@ -55,7 +55,10 @@ CONTACT_HEADER = ("zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1
 STEPS_HEADER = "step,stage,time,stabilization_force,pull_b_fx,pull_b_fy,pull_b_fz".split(",")
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FIGURES = ["fig14_tightened_reactions.png", "fig17_released_reactions.png", "fig12_stages.png",
-           "fig15_released_knots.png"]
+           "fig15_released_knots.png",
+           # the 3D views of scripts/knot_views.py: the stage end, the final state (not the stage end's),
+           # the branch
+           "view3d_stage_000_loop.png", "view3d_final.png", "view3d_mu_0.30.png"]
 
 S = np.linspace(0.0, 20.0, 401)   # rod arc length of the nodes: 0 to 20 mm, spacing 0.05 mm
 
