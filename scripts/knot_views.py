@@ -56,7 +56,7 @@ import json
 import os
 import re
 import sys
-from dataclasses import dataclass, field
+from dataclasses import dataclass
 from pathlib import Path
 
 import numpy as np
@@ -73,7 +73,7 @@ DEFAULT_RADIUS = 0.1        # mm, the rod radius of Sect. 7.2, when it cannot be
 KNOT_MARGIN = 1.0           # mm of rod either side of [s_a, s_b] in the knot panel
 BAR_LENGTH = 2.5            # longest reaction bar, in rod radii
 DEFAULT_ELEV, DEFAULT_AZIM = 60.0, -80.0   # degrees
-DEFAULT_SIDES = 14
+DEFAULT_SIDES = 14          # facets around the tube
 ROD_RGB = np.array([0.25, 0.47, 0.78])
 TOOL_RGB = np.array([0.62, 0.62, 0.62])
 LINE_RGB = (0.55, 0.0, 0.0)  # the intermediate geometry, dark red as in Fig. 13
@@ -81,7 +81,7 @@ STRIPE_SHADE = 0.55         # the director stripe: the tube's colour times this
 FOG = 0.45                  # share of white on the farthest facet
 KNOT_ALPHA = 1.0            # opacity of the rod in the knot panel
 REACTION_CMAP = "plasma"
-DPI = 110
+DPI = 110                   # of the PNG files
 FILL = 0.9                  # share of a panel's width or height that its drawing fills
 NODE_COLUMNS = ["s", "x", "y", "z"]
 CONTACT_COLUMNS = ["zone", "zeta", "abscissa_i", "abscissa_j", "x_i", "y_i", "z_i", "x_j", "y_j", "z_j",
@@ -109,7 +109,6 @@ class StateFiles:
     title: str
     nodes: Path
     contact: object         # Path or None
-    notes: list = field(default_factory=list)
 
 
 # ------------------------------------------------------------------------------------------------ reading
