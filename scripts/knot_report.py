@@ -67,6 +67,7 @@ import matplotlib.pyplot as plt  # noqa: E402  (after the backend is chosen)
 from matplotlib import cm, colors  # noqa: E402
 
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+sys.dont_write_bytecode = True  # leaves no scripts/__pycache__ in the source tree
 import knot_views  # noqa: E402  (the 3D views, scripts/knot_views.py)
 
 NODE_COLUMNS = ["s", "x", "y", "z"]  # numeric; also `beam`
