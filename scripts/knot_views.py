@@ -46,8 +46,8 @@ What is drawn:
             elevation --elev and azimuth --azim (matplotlib's convention: the viewer sits in the direction
             (cos elev cos azim, cos elev sin azim, sin elev)); the default, 60 and -80 degrees, looks down on
             the knot's plane (z up) from the side of -y, x to the right. The axes are hidden; a triad of the
-            x, y, z directions with its length in mm gives orientation and scale. End A is marked by a
-            triangle, end B by a square.
+            x, y, z directions under each panel, with its length in mm, gives orientation and scale. End A
+            is marked by a triangle, end B by a square.
 """
 
 import argparse
@@ -83,6 +83,7 @@ KNOT_ALPHA = 1.0            # opacity of the rod in the knot panel
 REACTION_CMAP = "plasma"
 DPI = 110                   # of the PNG files
 FILL = 0.9                  # share of a panel's width or height that its drawing fills
+TRIAD_BAND = 0.75           # inches under the panels for the triad of the axes
 NODE_COLUMNS = ["s", "x", "y", "z"]
 CONTACT_COLUMNS = ["zone", "zeta", "abscissa_i", "abscissa_j", "x_i", "y_i", "z_i", "x_j", "y_j", "z_j",
                    "nx", "ny", "nz"]
@@ -413,27 +414,31 @@ def set_equal_box(ax, points, pad):
     return low, high
 
 
-def nice_length(extent):
-    """A round length near 15 % of extent: 1, 2 or 5 times a power of ten."""
-    target = 0.15 * extent
-    power = 10.0 ** np.floor(np.log10(target))
-    return power * min((1, 2, 5, 10), key=lambda m: abs(np.log(m * power / target)))
+def round_length_below(limit):
+    """The largest 1, 2 or 5 times a power of ten not above limit (> 0)."""
+    power = 10.0 ** np.floor(np.log10(limit))
+    return power * max(m for m in (1, 2, 5) if m * power <= limit * (1 + 1e-12))
 
 
-def draw_triad(fig, rect, px_per_mm, extent, elev, azim):
-    """The x, y, z directions as seen, a round length near 15 % of `extent` [mm] long, in the lower left
-    corner of the panel's rectangle `rect` (pixels), with that length written under it."""
-    length = nice_length(extent)
+def draw_triad(fig, rect, px_per_mm, elev, azim):
+    """The x, y, z directions as seen, a round length long (as long as fits in TRIAD_BAND, below the panel's
+    rectangle `rect`, pixels), at the band's left, with that length written beside it."""
     _, right, up = screen_axes(elev, azim)
+    directions = np.array([[axis @ right, axis @ up] for axis in np.eye(3)])    # on screen, per mm
+    room = (TRIAD_BAND - 0.2) * fig.dpi                                       # pixels for the arrows
+    length = round_length_below(room / (px_per_mm * max(np.max(np.abs(directions)), 1e-3)))
     size = fig.bbox.size
-    origin = np.array([rect.x0 + 0.06 * rect.width, rect.y0 + 0.12 * rect.height])
-    for axis, label, colour in zip(np.eye(3), "xyz", ("tab:red", "tab:green", "tab:blue")):
-        tip = origin + length * px_per_mm * np.array([axis @ right, axis @ up])
+    origin = np.array([rect.x0 + 0.03 * rect.width + 0.5 * room,
+                       rect.y0 - TRIAD_BAND * fig.dpi + 0.12 * fig.dpi + 0.5 * room])
+    rightmost = origin[0]
+    for direction, label, colour in zip(directions, "xyz", ("tab:red", "tab:green", "tab:blue")):
+        tip = origin + length * px_per_mm * direction
         fig.add_artist(Line2D(*(np.column_stack([origin, tip]) / size[:, None]), color=colour, lw=1.5))
-        label_at = (origin + 1.2 * (tip - origin) + np.array([0.0, -4.0])) / size
-        fig.text(*label_at, label, color=colour, fontsize=8, ha="center", va="center")
-    fig.text(*((origin + np.array([0.0, -8.0])) / size), f"axes {length:g} mm", fontsize=7, color="0.3",
-             ha="left", va="top")
+        label_at = origin + 1.25 * (tip - origin)
+        fig.text(*(label_at / size), label, color=colour, fontsize=8, ha="center", va="center")
+        rightmost = max(rightmost, label_at[0])
+    fig.text((rightmost + 0.12 * fig.dpi) / size[0], origin[1] / size[1], f"axes {length:g} mm", fontsize=7,
+             color="0.3", ha="left", va="center")
 
 
 def draw_tubes(ax, pieces, radius, sides, view, light):
@@ -596,18 +601,19 @@ def render_state(state, out_path, radius=None, sides=DEFAULT_SIDES, elev=DEFAULT
     ratios = [size[1] / size[0] for _, size in (projected_box(ax, p) for ax, p in zip(axes, shown))]
     title_band = 0.75 if extent is not None else 0.55       # inches: figure title and panel titles
     panel = float(np.clip(max(r * w * width for r, (_, w) in zip(ratios, columns)) / FILL, 2.5, 7.0))
-    height = panel + title_band
+    height = panel + title_band + TRIAD_BAND
+    bottom = TRIAD_BAND / height
     fig.set_size_inches(width, height)
     for ax, (left, w), title in zip(axes, columns, titles):
-        ax.set_position([left, 0.0, w, panel / height])
-        fig.text(left + w / 2, panel / height, title, fontsize=9, ha="center", va="bottom")
+        ax.set_position([left, bottom, w, panel / height])
+        fig.text(left + w / 2, bottom + panel / height, title, fontsize=9, ha="center", va="bottom")
     if bar is not None:
-        bar.set_position([0.935, 0.15 * panel / height, 0.012, 0.7 * panel / height])
+        bar.set_position([0.935, bottom + 0.15 * panel / height, 0.012, 0.7 * panel / height])
     fig.suptitle(state.title, y=1.0 - 0.08 / height, va="top")
     fig.canvas.draw()
     for ax, points in zip(axes, shown):
         rect, px_per_mm = frame_panel(ax, points, elev, azim)
-        draw_triad(fig, rect, px_per_mm, float(np.max(np.ptp(points, axis=0))), elev, azim)
+        draw_triad(fig, rect, px_per_mm, elev, azim)
     temporary = out_path.with_name(f".{out_path.name}.tmp")
     try:
         fig.savefig(temporary, format="png", dpi=dpi)
