@@ -408,7 +408,7 @@ TEST(ScenarioContactErrors, UnknownKey) {
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
       "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
       "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
-      "max_normal_iterations | normal_tolerance";
+      "normal_updates | max_normal_iterations | normal_tolerance";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
   EXPECT_EQ(error_of("contact: {coulomb: 0.2}\n"),
@@ -482,6 +482,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  friction_tangent: frozen\n"
                        "  particles: fixed\n"
                        "  max_detections: 4\n"
+                       "  normal_updates: nested\n"
                        "  max_normal_iterations: 6\n"
                        "  normal_tolerance: 0.001  # rad\n"))
       << text;
@@ -501,6 +502,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  friction_tangent: frozen\n"
                        "  particles: facing\n"
                        "  max_detections: 2\n"
+                       "  normal_updates: nested\n"
                        "  max_normal_iterations: 10\n"
                        "  normal_tolerance: 0.0001  # rad\n"))
       << given;

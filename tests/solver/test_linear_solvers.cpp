@@ -1,5 +1,6 @@
 // The sparse direct solvers agree with a dense reference on a positive definite and on an indefinite matrix
-// (CHOLMOD falls back from LL^T to LDL^T), and Newton converges quadratically on a small nonlinear problem.
+// (CHOLMOD falls back from LL^T to LDL^T), and Newton converges quadratically on a small nonlinear problem,
+// also with its factor kept across iterations (GMRES on it) and with a fixed point solved inside it.
 
 #include <gtest/gtest.h>
 
@@ -67,6 +68,8 @@ class CubicProblem final : public NonlinearProblem {
     history.push_back(r.norm());
   }
   const SparseMatrix& tangent() const override { return k_; }
+  /// b = `load` in every component.
+  void set_load(double load) { b_.setConstant(load); }
   double residual_tolerance() const override { return 1e-12; }
   double scaled_increment(const Eigen::VectorXd& du) const override { return du.lpNorm<Eigen::Infinity>(); }
   double increment_tolerance() const override { return 1e-10; }
@@ -89,6 +92,53 @@ TEST(Newton, ConvergesQuadratically) {
     EXPECT_LE(report.iterations, 8);
     EXPECT_LE(report.residual, 1e-12);
   }
+}
+
+TEST(Newton, KeptFactorWithGmresSolvesTheSameProblem) {
+  CubicProblem exact(40), lagged(40);
+  auto linear = make_linear_solver(LinearSolverKind::cholmod);
+  const NewtonReport reference = NewtonSolver(*linear, NewtonSettings{}).solve(exact);
+  ASSERT_TRUE(reference.converged) << reference.failure;
+  NewtonSettings settings;
+  settings.reuse_factor = true;
+  settings.krylov_tolerance = 1e-8;
+  NewtonSolver newton(*linear, settings);
+  const NewtonReport report = newton.solve(lagged);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_LE(report.residual, 1e-12);
+  // GMRES on the first iteration's factor carried the later iterations: fewer factorisations than iterations.
+  EXPECT_LT(newton.timings().factorizations, report.iterations);
+  EXPECT_GT(newton.timings().krylov_iterations, 0);
+  EXPECT_LT((lagged.unknowns() - exact.unknowns()).lpNorm<Eigen::Infinity>(), 1e-10);
+}
+
+TEST(Newton, FixedPointInsideNewtonEndsWhereTheUpdateChangesNothing) {
+  // R(u) = A u + u^3 - b(p), with b = 3 + p and p = mean(u) / 2 a fixed point updated between iterations.
+  CubicProblem p(40);
+  auto linear = make_linear_solver(LinearSolverKind::cholmod);
+  NewtonSolver newton(*linear, NewtonSettings{});
+  double load = 0.0;  // p
+  int updates = 0;
+  bool last_converged = false;
+  const FixedPointUpdate update = [&](const NewtonProgress& progress) {
+    last_converged = progress.converged;
+    const double next = 0.5 * p.unknowns().mean();
+    if (std::abs(next - load) <= 1e-13) return false;
+    load = next;
+    p.set_load(3.0 + load);
+    ++updates;
+    return true;
+  };
+  const NewtonReport report = newton.solve(p, update);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_GT(updates, 1);
+  EXPECT_TRUE(last_converged);  // the solve ended on an update at a converged state
+  // The end state solves the coupled problem: p is the fixed point, and R(u) = 0 with it.
+  const Eigen::VectorXd u = p.unknowns();
+  EXPECT_NEAR(load, 0.5 * u.mean(), 1e-13);
+  const Eigen::VectorXd r =
+      banded(40, 0.0) * u + u.array().cube().matrix() - Eigen::VectorXd::Constant(40, 3.0 + 0.5 * u.mean());
+  EXPECT_LT(r.norm(), 1e-11);
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ class Recorder final : public solver::NonlinearProblem {
   void set_unknowns(const Eigen::VectorXd& u) override { p_.set_unknowns(u); }
   void evaluate(Eigen::VectorXd& r, bool with_tangent) override {
     p_.evaluate(r, with_tangent);
-    // Newton evaluates each new iterate without tangent, then again with it: keep each iterate once.
-    if (!with_tangent || states.empty()) {
+    // Newton may evaluate an iterate twice (without the tangent, then with it, when it line-searches): keep
+    // each iterate once.
+    if (states.empty() || p_.unknowns() != states.back()) {
       norms.push_back(r.norm());
       states.push_back(p_.unknowns());
     }

@@ -23,6 +23,8 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.detection_seconds = summary.detection_seconds;
   data.assembly_seconds = summary.assembly_seconds;
   data.linear_solve_seconds = summary.linear_solve_seconds;
+  data.factorizations = summary.factorizations;
+  data.krylov_iterations = summary.krylov_iterations;
   data.failure = summary.failure;
   data.final_time = sim.time();
   data.scenario = sim.scenario().path;
@@ -43,6 +45,8 @@ std::string summary_json(const SummaryData& data) {
   j["detection_seconds"] = data.detection_seconds;
   j["assembly_seconds"] = data.assembly_seconds;
   j["linear_solve_seconds"] = data.linear_solve_seconds;
+  j["factorizations"] = data.factorizations;
+  j["krylov_iterations"] = data.krylov_iterations;
   j["beams"] = data.beams;
   j["nodes"] = data.nodes;
   j["elements"] = data.elements;
@@ -88,6 +92,8 @@ SummaryData read_summary(const std::filesystem::path& path) {
     data.detection_seconds = j.value("detection_seconds", 0.0);
     data.assembly_seconds = j.value("assembly_seconds", 0.0);
     data.linear_solve_seconds = j.value("linear_solve_seconds", 0.0);
+    data.factorizations = j.value("factorizations", 0);
+    data.krylov_iterations = j.value("krylov_iterations", 0);
     data.beams = j.value("beams", 0);
     data.nodes = j.value("nodes", 0);
     data.elements = j.value("elements", 0);

@@ -35,6 +35,8 @@ struct SummaryData {
   double detection_seconds = 0.0;       ///< of which in contact detection [s]
   double assembly_seconds = 0.0;        ///< of which in residual and tangent evaluations inside Newton [s]
   double linear_solve_seconds = 0.0;    ///< of which in sparse analysis, factorisation and solves [s]
+  int factorizations = 0;               ///< numerical factorisations of the tangent
+  int krylov_iterations = 0;            ///< GMRES iterations on lagged factors
   std::string failure;                  ///< why the run stopped early; empty if it did not
   double final_time = 0.0;              ///< load time of the last converged state [s]
   std::string scenario;                 ///< path of the scenario file

@@ -51,6 +51,7 @@ struct ProgressFields {
 struct CountersFields {
   int steps, newton_iterations;
   double wall_seconds, detection_seconds, assembly_seconds, linear_solve_seconds;
+  int factorizations, krylov_iterations;
 };
 struct ProblemFields {
   Eigen::VectorXd x;
@@ -375,6 +376,8 @@ std::string encode_checkpoint(const scenario::Scenario& scenario, const simulati
   e.f64(state.counters.detection_seconds);
   e.f64(state.counters.assembly_seconds);
   e.f64(state.counters.linear_solve_seconds);
+  e.i32(state.counters.factorizations);
+  e.i32(state.counters.krylov_iterations);
   // the equilibrium problem
   e.vector(state.problem.x);
   e.f64(state.problem.time);
@@ -434,6 +437,8 @@ simulation::SimulationState decode_checkpoint(std::string_view bytes, const scen
   state.counters.detection_seconds = d.f64();
   state.counters.assembly_seconds = d.f64();
   state.counters.linear_solve_seconds = d.f64();
+  state.counters.factorizations = d.i32();
+  state.counters.krylov_iterations = d.i32();
   state.problem.x = d.vector();
   state.problem.time = d.f64();
   state.problem.contact = get_geometry(d);

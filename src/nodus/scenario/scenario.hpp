@@ -460,6 +460,9 @@ struct SolverSettings {
   int easy_iterations = ::nodus::solver::StepControl{}.easy_iterations;
   /// Damp the Newton updates by a line search: slower on every verification case so far (docs/model.md).
   bool line_search = ::nodus::solver::NewtonSettings{}.line_search;
+  /// Keep the tangent's factor across iterations and steps, solving with GMRES on it (NewtonSettings).
+  bool reuse_factor = ::nodus::solver::NewtonSettings{}.reuse_factor;
+  int krylov_iterations = ::nodus::solver::NewtonSettings{}.krylov_iterations;  ///< >= 1
   int gauss_points = 2;         ///< Gauss points per element along the axis, 1..5
   double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (beam_element.hpp), >= 0
 
@@ -488,6 +491,11 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
       K::flag("solver.line_search", &SolverSettings::line_search,
               "damp Newton updates by a line search on the energy slope (off: faster on every "
               "verification case, docs/model.md)"),
+      K::flag("solver.reuse_factor", &SolverSettings::reuse_factor,
+              "keep the tangent's factorisation across Newton iterations and steps, and solve with GMRES "
+              "preconditioned by it while it serves (docs/performance.md)"),
+      K::whole("solver.krylov_iterations", &SolverSettings::krylov_iterations, ">= 1", ranges::at_least_one,
+               "GMRES iterations allowed on a kept factorisation before the tangent is factorised again"),
       K::whole("solver.gauss_points", &SolverSettings::gauss_points, "in 1..5", ranges::one_to_five,
                "Gauss points per element along the axis (2: reduced integration, free of "
                "locking; docs/model.md)"),
@@ -559,7 +567,9 @@ struct ContactSettings {
   /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
   /// paper's fixed material particles (fixed).
   bool facing_particles = false;
-  int max_detections = 4;          ///< loop 2: detections of contact elements per step, >= 1
+  int max_detections = 4;  ///< loop 2: detections of contact elements per step, >= 1
+  /// Loop 3 inside Newton (contact.normal_updates: inside_newton); false: the paper's nested loop.
+  bool normals_inside_newton = false;
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
   double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
 
@@ -646,6 +656,14 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
       K::whole("contact.max_detections", &ContactSettings::max_detections, ">= 1", ranges::at_least_one,
                "loop 2 of the global algorithm (Sect. 6): at most this many detections of the "
                "contact elements per load step"),
+      K::choice(
+          "contact.normal_updates", "nested | inside_newton",
+          [](const ContactSettings& c) { return c.normals_inside_newton ? 1 : 0; },
+          [](ContactSettings& c, int i) { c.normals_inside_newton = i == 1; },
+          "loop 3 of the global algorithm. nested: the paper's, a Newton solve to convergence "
+          "after every update of the normals and penalties. inside_newton: the normals follow "
+          "the iterates within one Newton solve, the penalties are adjusted at its converged "
+          "states (docs/contact.md)"),
       K::whole("contact.max_normal_iterations", &ContactSettings::max_normal_iterations, ">= 1",
                ranges::at_least_one,
                "loop 3: at most this many updates of the normal directions and penalties per "

@@ -26,6 +26,10 @@ constexpr double kMaxPenetrationRatio = 10.0;
 /// The smallest penalty the adjustment of loop 3 gives a zone, as a fraction of the initial one.
 constexpr double kPenaltyFloor = 1e-4;
 
+/// Loop 3 inside Newton updates the normals between iterations once |R| has fallen below this fraction of
+/// the total normal force (docs/contact.md, "Loop 3 inside Newton").
+constexpr double kNormalUpdateRatio = 1e-3;
+
 }  // namespace
 
 ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& problem,
@@ -115,6 +119,103 @@ void ContactLoops::collect_stats() {
   }
 }
 
+bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
+  for (int m = 1;; ++m) {
+    const solver::NewtonReport r = newton_.solve(problem_);
+    total.iterations += r.iterations;
+    total.longest_solve = std::max(total.longest_solve, r.iterations);
+    total.residual = r.residual;
+    total.increment = r.increment;
+    ++stats_.normal_iterations;
+    if (!r.converged) {
+      total.failure = r.failure;
+      total.cancelled = r.cancelled;
+      return false;
+    }
+    const contact::ContactGeometry kept = problem_.contact_geometry();
+    const std::vector<double> kept_penalty = problem_.zone_penalty();
+    const double turn = update_normals();
+    const bool off = adjust_penalties();
+    const bool converged = turn <= laws_.normal_tolerance && !off;
+    if (converged || m >= laws_.max_normal_iterations) {
+      // Converged: the state is the equilibrium of these normals and penalties. At the cap: keep those
+      // Newton converged with too, and say whether the update would still have changed them.
+      problem_.contact_geometry() = kept;
+      problem_.zone_penalty() = kept_penalty;
+      stats_.normals_capped = !converged;
+      if (!converged)
+        spdlog::debug(
+            "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
+            "up to {:.2e} rad{}",
+            laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
+      return true;
+    }
+    spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
+                  off ? ", penalties adjusted" : "");
+  }
+}
+
+bool ContactLoops::solve_normals_inside_newton(solver::NewtonReport& total) {
+  // Updates that changed the problem, on the way and at converged states together: at most
+  // max_normal_iterations - 1, as in the nested loop (a normal that flips between two directions would
+  // otherwise keep Newton from converging).
+  int updates = 0;
+  bool capped = false;
+  const solver::FixedPointUpdate update = [&](const solver::NewtonProgress& p) {
+    const bool last = updates + 1 >= laws_.max_normal_iterations;
+    if (!p.converged) {
+      // On the way: the normals follow the iterates once they are near equilibrium (updating them far from
+      // it turns them by the iterates' overshoots). Only a turn beyond the tolerance is taken: smaller ones,
+      // which the nested loop accepts, would hold Newton to the linear convergence of the fixed point.
+      if (last) return false;
+      double normal_force = 0.0;
+      for (const ContactState& c : problem_.contact_states()) normal_force += c.normal_reaction;
+      if (!(p.residual <= kNormalUpdateRatio * normal_force)) return false;
+      const contact::ContactGeometry kept = problem_.contact_geometry();
+      if (update_normals() > laws_.normal_tolerance) {
+        ++updates;
+        return true;
+      }
+      problem_.contact_geometry() = kept;
+      return false;
+    }
+    // At a converged state, as the nested loop after each solve.
+    const contact::ContactGeometry kept = problem_.contact_geometry();
+    const std::vector<double> kept_penalty = problem_.zone_penalty();
+    const double turn = update_normals();
+    const bool off = adjust_penalties();
+    const bool settled = turn <= laws_.normal_tolerance && !off;
+    if (settled || last) {
+      capped = !settled;
+      if (capped)
+        spdlog::debug(
+            "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
+            "up to {:.2e} rad{}",
+            laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
+      problem_.contact_geometry() = kept;
+      problem_.zone_penalty() = kept_penalty;
+      return false;
+    }
+    ++updates;
+    spdlog::debug("contact loop 3: at a converged state normals turned by up to {:.2e} rad{}", turn,
+                  off ? ", penalties adjusted" : "");
+    return true;
+  };
+  const solver::NewtonReport r = newton_.solve(problem_, update);
+  total.iterations += r.iterations;
+  total.longest_solve = std::max(total.longest_solve, r.iterations);
+  total.residual = r.residual;
+  total.increment = r.increment;
+  stats_.normal_iterations += updates + 1;
+  stats_.normals_capped = capped;
+  if (!r.converged) {
+    total.failure = r.failure;
+    total.cancelled = r.cancelled;
+    return false;
+  }
+  return true;
+}
+
 solver::NewtonReport ContactLoops::solve() {
   stats_ = ContactStepStats{};
   solver::NewtonReport total;
@@ -122,39 +223,9 @@ solver::NewtonReport ContactLoops::solve() {
   stats_.detections = 1;
   bool settled = false;  // the last detection changed the contact forces by less than kSetTolerance
   for (;;) {
-    for (int m = 1;; ++m) {  // loop 3
-      const solver::NewtonReport r = newton_.solve(problem_);
-      total.iterations += r.iterations;
-      total.longest_solve = std::max(total.longest_solve, r.iterations);
-      total.residual = r.residual;
-      total.increment = r.increment;
-      ++stats_.normal_iterations;
-      if (!r.converged) {
-        total.failure = r.failure;
-        total.cancelled = r.cancelled;
-        return total;
-      }
-      const contact::ContactGeometry kept = problem_.contact_geometry();
-      const std::vector<double> kept_penalty = problem_.zone_penalty();
-      const double turn = update_normals();
-      const bool off = adjust_penalties();
-      const bool converged = turn <= laws_.normal_tolerance && !off;
-      if (converged || m >= laws_.max_normal_iterations) {
-        // Converged: the state is the equilibrium of these normals and penalties. At the cap: keep those
-        // Newton converged with too, and say whether the update would still have changed them.
-        problem_.contact_geometry() = kept;
-        problem_.zone_penalty() = kept_penalty;
-        stats_.normals_capped = !converged;
-        if (!converged)
-          spdlog::debug(
-              "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
-              "up to {:.2e} rad{}",
-              laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
-        break;
-      }
-      spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
-                    off ? ", penalties adjusted" : "");
-    }
+    const bool solved =
+        laws_.normals_inside_newton ? solve_normals_inside_newton(total) : solve_normals_nested(total);
+    if (!solved) return total;
     if (settled) break;
     if (stats_.detections >= laws_.max_detections) {
       // At the cap before the set of contact elements settled: unless no beam takes part in contact, where

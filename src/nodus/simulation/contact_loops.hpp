@@ -30,14 +30,21 @@ struct ContactLawSettings {
   /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
   bool facing_particles = false;
   int max_detections = 4;
+  /// Loop 3 inside Newton (contact.normal_updates: inside_newton): the normals are updated between Newton
+  /// iterations once the residual has fallen below kNormalUpdateRatio of its first value, and at each
+  /// converged state, the penalties only there; false: the paper's nested loop, a Newton solve to convergence
+  /// after every update.
+  bool normals_inside_newton = false;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]
 };
 
 /// What the loops did in the last step, and the contact forces at its end.
 struct ContactStepStats {
-  int detections = 0;         ///< loop 2 iterations
-  int normal_iterations = 0;  ///< loop 3 iterations, summed over the detections
+  int detections = 0;  ///< loop 2 iterations
+  /// Loop 3 iterations, summed over the detections: the Newton solves (nested), or the updates of the normals
+  /// at converged states (inside Newton).
+  int normal_iterations = 0;
   /// Loop 2 stopped at max_detections without its criterion (the set of contact elements settled) met.
   bool detections_capped = false;
   /// The last loop 3 of the step stopped at max_normal_iterations with normals that a further update would
@@ -66,6 +73,11 @@ class ContactLoops {
   double detection_seconds() const { return detection_seconds_; }
 
  private:
+  /// Loop 3, nested: Newton solves to convergence with the normals and penalties fixed, updated between
+  /// them. Adds to `total`; returns false if a Newton solve failed.
+  bool solve_normals_nested(solver::NewtonReport& total);
+  /// Loop 3 inside one Newton solve (ContactLawSettings::normals_inside_newton).
+  bool solve_normals_inside_newton(solver::NewtonReport& total);
   /// A detection in the current state (timed).
   contact::ContactGeometry detect();
   /// Makes `next` the contact elements, with penalties and history carried over from the current ones.

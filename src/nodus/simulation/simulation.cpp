@@ -181,6 +181,7 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
+  laws.normals_inside_newton = c.normals_inside_newton;
   laws.max_normal_iterations = c.max_normal_iterations;
   laws.normal_tolerance = c.normal_tolerance;
   return laws;
@@ -299,6 +300,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;
+  newton_settings.reuse_factor = scenario_.solver.reuse_factor;
+  newton_settings.krylov_iterations = scenario_.solver.krylov_iterations;
   newton_settings.cancel = options.cancel;
   solver::NewtonSolver newton(*linear, newton_settings);
   std::optional<ContactLoops> loops;
@@ -317,6 +320,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                                   (loops ? loops->detection_seconds() : 0.0);
     counters_.assembly_seconds = base.assembly_seconds + newton.timings().evaluation;
     counters_.linear_solve_seconds = base.linear_solve_seconds + newton.timings().linear_solve;
+    counters_.factorizations = base.factorizations + newton.timings().factorizations;
+    counters_.krylov_iterations = base.krylov_iterations + newton.timings().krylov_iterations;
   };
   for (StepObserver* o : observers) o->on_start(*this);
 
@@ -469,6 +474,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.detection_seconds = counters_.detection_seconds;
   summary.assembly_seconds = counters_.assembly_seconds;
   summary.linear_solve_seconds = counters_.linear_solve_seconds;
+  summary.factorizations = counters_.factorizations;
+  summary.krylov_iterations = counters_.krylov_iterations;
   if (!summary.interrupted)
     for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;

@@ -65,6 +65,8 @@ struct RunSummary {
   double detection_seconds = 0.0;     ///< of which spent in contact detection
   double assembly_seconds = 0.0;      ///< in residual and tangent evaluations inside Newton (line search too)
   double linear_solve_seconds = 0.0;  ///< in the sparse analysis, factorisation and solves
+  int factorizations = 0;             ///< numerical factorisations of the tangent
+  int krylov_iterations = 0;          ///< GMRES iterations on lagged factors (solver.reuse_factor)
   std::string failure;                ///< why the run stopped early
   /// Stopped on request (RunOptions::stop_after_steps), as if killed: on_finish was not called.
   bool interrupted = false;
@@ -82,6 +84,8 @@ struct RunCounters {
   double detection_seconds = 0.0;
   double assembly_seconds = 0.0;
   double linear_solve_seconds = 0.0;
+  int factorizations = 0;
+  int krylov_iterations = 0;
 };
 
 /// Where a run stands in its loading program between two steps.

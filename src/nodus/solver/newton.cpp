@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
+#include <Eigen/SparseCore>
+#include <unsupported/Eigen/IterativeSolvers>
 
 namespace nodus::solver {
 namespace {
@@ -23,9 +25,70 @@ class Stopwatch {
   std::chrono::steady_clock::time_point start_;
 };
 
+/// A factorisation held by a LinearSolver, as the preconditioner of one of Eigen's iterative solvers (the
+/// interface they expect of a preconditioner: compute() is a no-op, the factor is the solver's last one).
+class FactorPreconditioner {
+ public:
+  void use(LinearSolver& factor) { factor_ = &factor; }
+  template <class Matrix>
+  FactorPreconditioner& analyzePattern(const Matrix& /*a*/) {
+    return *this;
+  }
+  template <class Matrix>
+  FactorPreconditioner& factorize(const Matrix& /*a*/) {
+    return *this;
+  }
+  template <class Matrix>
+  FactorPreconditioner& compute(const Matrix& /*a*/) {
+    return *this;
+  }
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) const { return factor_->solve(b); }
+  Eigen::ComputationInfo info() const { return Eigen::Success; }
+
+ private:
+  LinearSolver* factor_ = nullptr;
+};
+
 }  // namespace
 
-NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
+bool NewtonSolver::solve_linear(const SparseMatrix& tangent, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+  // A factor of an earlier pattern (before a detection changed the contact elements) still preconditions the
+  // current tangent as long as the unknowns are the same: the new pattern is analysed only when the tangent
+  // is factorised again. The policy depends on counts only, never on timings, so that a run gives the same
+  // results on any machine and when resumed.
+  if (settings_.reuse_factor && factored_ && factor_size_ == tangent.rows()) {
+    Eigen::GMRES<SparseMatrix, FactorPreconditioner> gmres;
+    gmres.preconditioner().use(linear_);
+    gmres.compute(tangent);
+    gmres.setMaxIterations(settings_.krylov_iterations);
+    gmres.set_restart(settings_.krylov_iterations);
+    // Its own stopping test is on the preconditioned residual, which reads up to 100 times smaller than the
+    // true one on the knot's tangents: it is asked for 1e-3 of the tolerance, and each extra iteration costs
+    // little against a factorisation.
+    gmres.setTolerance(1e-3 * settings_.krylov_tolerance);
+    x = gmres.solve(rhs);
+    timings_.krylov_iterations += static_cast<int>(gmres.iterations());
+    // The increment is accepted on the true residual.
+    const double relative = (tangent * x - rhs).norm() / rhs.norm();
+    if (relative <= settings_.krylov_tolerance) return true;
+    spdlog::debug(
+        "newton: GMRES on the lagged factor left {:.1e} of the residual after {} iterations; "
+        "refactorising",
+        relative, gmres.iterations());
+  }
+  if (!analyzed_) {
+    linear_.analyze(tangent);
+    analyzed_ = true;
+  }
+  factored_ = linear_.factorize(tangent);
+  factor_size_ = tangent.rows();
+  ++timings_.factorizations;
+  if (!factored_) return false;
+  x = linear_.solve(rhs);
+  return true;
+}
+
+NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpdate& update) {
   NewtonReport report;
   Eigen::VectorXd residual;
   Eigen::VectorXd u = problem.unknowns();
@@ -34,6 +97,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
     problem.evaluate(residual, true);
   }
   double norm = residual.norm();
+  const double first_norm = norm;
   if (!std::isfinite(norm)) {
     report.failure = "the residual is not finite at the start of the step";
     return report;
@@ -44,17 +108,13 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
     Eigen::VectorXd du;
     {
       const Stopwatch watch(timings_.linear_solve);
-      if (!analyzed_) {
-        linear_.analyze(problem.tangent());
-        analyzed_ = true;
-      }
-      if (!linear_.factorize(problem.tangent())) {
+      if (!solve_linear(problem.tangent(), residual, du)) {
         report.failure = fmt::format("the tangent is singular (iteration {})", it);
         report.iterations = it;
         report.residual = norm;
         return report;
       }
-      du = -linear_.solve(residual);
+      du = -du;
     }
     if (!du.allFinite()) {
       report.failure = fmt::format("the linear solve gave a non-finite increment (iteration {})", it);
@@ -70,7 +130,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
     {
       const Stopwatch watch(timings_.evaluation);
       problem.set_unknowns(u + du);
-      problem.evaluate(trial_residual, false);
+      // Without a line search the full step is taken: its tangent is assembled with its residual, in one
+      // pass over the terms instead of two.
+      problem.evaluate(trial_residual, !settings_.line_search);
       const double s0 = du.dot(residual);
       if (settings_.line_search && s0 < 0.0) {
         double lo = 0.0, s_lo = s0;        // s < 0 at lo
@@ -112,7 +174,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
     report.increment = increment;
     spdlog::debug("newton {:2d}: |R| = {:.3e} (tol {:.1e}), |du| = {:.3e}, alpha = {}", it, norm,
                   problem.residual_tolerance(), increment, alpha);
-    if (norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance()) {
+    const bool converged = norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance();
+    const bool changed = update && update({it, norm, first_norm, converged});
+    if (converged && !changed) {
       report.converged = true;
       return report;
     }
@@ -121,7 +185,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem) {
       report.failure = fmt::format("cancelled after iteration {}", it);
       return report;
     }
-    if (it < settings_.max_iterations) {
+    if (it < settings_.max_iterations && (settings_.line_search || changed)) {
       const Stopwatch tangent_watch(timings_.evaluation);
       problem.evaluate(residual, true);
     }

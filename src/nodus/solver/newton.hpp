@@ -19,6 +19,15 @@ struct NewtonSettings {
   /// Asked after each iteration: true stops the solve there (NewtonReport::cancelled), as Ctrl-C in Python
   /// does. Empty: never.
   std::function<bool()> cancel;
+  /// Keep the factorisation of the tangent across Newton iterations and load steps: each increment is then
+  /// solved by GMRES on the current tangent, preconditioned by the last factor, and the tangent is factorised
+  /// again only when GMRES does not reach `krylov_tolerance` within `krylov_iterations` (docs/performance.md,
+  /// "Issue 17"). false: a factorisation per iteration.
+  bool reuse_factor = false;
+  int krylov_iterations = 20;  ///< GMRES iterations allowed with a lagged factor before refactorising
+  /// An increment from GMRES is accepted when |K du + R| <= krylov_tolerance |R|. At 1e-6, Newton took the
+  /// same iterations as with exact solves on the 100-element knot (docs/performance.md).
+  double krylov_tolerance = 1e-6;
 };
 
 struct NewtonReport {
@@ -36,9 +45,24 @@ struct NewtonReport {
 /// Where Newton's time went, summed over all solves [s].
 struct NewtonTimings {
   double evaluation = 0.0;    ///< residual and tangent assembly (problem.evaluate), line search included
-  double linear_solve = 0.0;  ///< symbolic analysis, factorisation and solve
+  double linear_solve = 0.0;  ///< symbolic analysis, factorisation and solve (GMRES included)
   int iterations = 0;
+  int factorizations = 0;     ///< numerical factorisations of the tangent
+  int krylov_iterations = 0;  ///< GMRES iterations on lagged factors, summed
 };
+
+/// Where a Newton solve stands after an iteration, for a fixed point solved inside it.
+struct NewtonProgress {
+  int iteration = 0;
+  double residual = 0.0;        ///< |R| after the iteration
+  double first_residual = 0.0;  ///< |R| at the start of the solve
+  bool converged = false;       ///< by the tolerances, for the problem as it is
+};
+
+/// A fixed point solved together with the equilibrium (the contact normals and penalties of loop 3, Sect. 6):
+/// called after each iteration; returns true if it changed the problem, which Newton then goes on solving.
+/// A solve converges only at a state where the update changes nothing.
+using FixedPointUpdate = std::function<bool(const NewtonProgress&)>;
 
 class NewtonSolver {
  public:
@@ -46,14 +70,20 @@ class NewtonSolver {
       : linear_(linear_solver), settings_(settings) {}
   /// Iterates from the problem's current unknowns. Convergence needs both |R| <= residual_tolerance and
   /// scaled |du| <= increment_tolerance. Call reanalyze() when the tangent pattern changes.
-  NewtonReport solve(NonlinearProblem& problem);
+  NewtonReport solve(NonlinearProblem& problem, const FixedPointUpdate& update = {});
   void reanalyze() { analyzed_ = false; }
   const NewtonTimings& timings() const { return timings_; }
 
  private:
+  /// Solves `tangent` x = `rhs`: with GMRES on the lagged factor while it serves, else by a new
+  /// factorisation. Returns false if the tangent is singular.
+  bool solve_linear(const SparseMatrix& tangent, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
+
   LinearSolver& linear_;
   NewtonSettings settings_;
   bool analyzed_ = false;
+  bool factored_ = false;         ///< the linear solver holds a factorisation (perhaps of an earlier pattern)
+  Eigen::Index factor_size_ = 0;  ///< the number of unknowns of that factorisation
   NewtonTimings timings_;
 };
 
