@@ -2,7 +2,7 @@
 // residual, every value of the tangent and the state of every contact element are compared with ==, not
 // within a tolerance. The problem: four parallel beams on a square of side 1.99 R, each pressed into its two
 // neighbours by 0.01 R, with friction, evaluated away from the committed (reference) state so that elements
-// both stick and slip. It has enough beam and contact elements for several chunks of the parallel loops.
+// both stick and slip. It has enough beam and contact elements to go several times round the ring of buffers.
 
 #include <gtest/gtest.h>
 
@@ -117,14 +117,15 @@ void expect_identical(const Evaluation& a, const Evaluation& b, int threads) {
 TEST(ParallelAssembly, ResidualAndTangentDoNotDependOnTheNumberOfThreads) {
   const int max_threads = omp_get_max_threads();
   Bundle bundle;
-  // Both loops run in several chunks on several threads (else the comparison checks nothing).
+  // Both loops run on several threads and round their rings more than twice (else the comparison checks
+  // nothing).
   omp_set_num_threads(2);
-  const std::size_t contact_chunk = solver::assembly_chunk(bundle.contact_elements());
-  const std::size_t beam_chunk = solver::assembly_chunk(static_cast<std::size_t>(bundle.beam_elements()));
-  EXPECT_GT(contact_chunk, 1u);
-  EXPECT_GT(beam_chunk, 1u);
-  EXPECT_GT(bundle.contact_elements(), 2 * contact_chunk);
-  EXPECT_GT(static_cast<std::size_t>(bundle.beam_elements()), 2 * beam_chunk);
+  const std::size_t contact_buffers = solver::assembly_buffers(bundle.contact_elements());
+  const std::size_t beam_buffers = solver::assembly_buffers(static_cast<std::size_t>(bundle.beam_elements()));
+  EXPECT_GT(contact_buffers, 1u);
+  EXPECT_GT(beam_buffers, 1u);
+  EXPECT_GT(bundle.contact_elements(), 2 * contact_buffers);
+  EXPECT_GT(static_cast<std::size_t>(bundle.beam_elements()), 2 * beam_buffers);
 
   const Evaluation serial = bundle.evaluate(1);
   // Friction is at work, sticking and slipping, and the forces are not all zero.

@@ -35,9 +35,9 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
     const ContactElement& e = geometry_.elements[k];
     const int ei = e.particle_i.element, ej = e.particle_j.element;
     const NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
-    r = contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
-                         model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
-                         friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_);
+    contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
+                     model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
+                     friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_, r);
     states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
   };
   const auto scatter = [&](std::size_t k, const ContactResponse& r) {

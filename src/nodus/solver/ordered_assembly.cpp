@@ -1,45 +1,65 @@
 #include "nodus/solver/ordered_assembly.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <memory>
+#include <thread>
 
 #include <omp.h>
 
 namespace nodus::solver {
 namespace {
 
-/// Elements per chunk on several threads.
-constexpr std::size_t kChunk = 256;
+/// Buffers of the ring on several threads.
+constexpr std::size_t kRing = 256;
 /// Below this many elements the loop runs on one thread: a parallel region would cost more than it saves.
 constexpr std::size_t kParallelElements = 256;
 
 }  // namespace
 
-std::size_t assembly_chunk(std::size_t count) {
+std::size_t assembly_buffers(std::size_t count) {
   if (count < kParallelElements || omp_get_max_threads() < 2) return 1;
-  return std::min(kChunk, count);
+  return std::min(kRing, count);
 }
 
-void assemble_in_order(std::size_t count, std::size_t chunk,
+void assemble_in_order(std::size_t count, std::size_t buffers,
                        const std::function<void(std::size_t, std::size_t)>& compute,
                        const std::function<void(std::size_t, std::size_t)>& scatter) {
-  const bool parallel = chunk > 1;
-  const std::size_t chunks = (count + chunk - 1) / chunk;
-  const auto first = [&](std::size_t c) { return c * chunk; };
-  const auto size = [&](std::size_t c) { return std::min(chunk, count - c * chunk); };
-  const auto slot = [&](std::size_t c, std::size_t i) { return (c % 2) * chunk + i; };
-  // Pass c computes chunk c and adds up chunk c - 1 (whose buffers the computation does not touch).
-  for (std::size_t c = 0; c <= chunks; ++c) {
-#pragma omp parallel if (parallel)
-    {
-#pragma omp single nowait
-      if (c > 0)
-        for (std::size_t i = 0; i < size(c - 1); ++i) scatter(first(c - 1) + i, slot(c - 1, i));
-      if (c < chunks) {
-        const auto n = static_cast<std::ptrdiff_t>(size(c));
-#pragma omp for schedule(dynamic) nowait
-        for (std::ptrdiff_t i = 0; i < n; ++i)
-          compute(first(c) + static_cast<std::size_t>(i), slot(c, static_cast<std::size_t>(i)));
+  if (buffers == 1) {
+    for (std::size_t k = 0; k < count; ++k) {
+      compute(k, 0);
+      scatter(k, 0);
+    }
+    return;
+  }
+  std::atomic<std::size_t> next{0};       // the next element to compute
+  std::atomic<std::size_t> scattered{0};  // the elements added up so far
+  // ready[slot] = k + 1 once element k is computed into its slot.
+  const std::unique_ptr<std::atomic<std::size_t>[]> ready(new std::atomic<std::size_t>[buffers]);
+  for (std::size_t s = 0; s < buffers; ++s) ready[s].store(0, std::memory_order_relaxed);
+  // Computes the next element if its slot is free (its element of the previous lap added up); false if
+  // there is none to compute or no free slot.
+  const auto compute_next = [&] {
+    std::size_t k = next.load(std::memory_order_relaxed);
+    if (k >= count || k >= scattered.load(std::memory_order_acquire) + buffers) return false;
+    if (next.compare_exchange_weak(k, k + 1, std::memory_order_relaxed)) {
+      compute(k, k % buffers);
+      ready[k % buffers].store(k + 1, std::memory_order_release);
+    }
+    return true;
+  };
+#pragma omp parallel
+  {
+    if (omp_get_thread_num() == 0) {
+      for (std::size_t k = 0; k < count; ++k) {
+        while (ready[k % buffers].load(std::memory_order_acquire) != k + 1)
+          if (!compute_next()) std::this_thread::yield();
+        scatter(k, k % buffers);
+        scattered.store(k + 1, std::memory_order_release);
       }
+    } else {
+      while (next.load(std::memory_order_relaxed) < count)
+        if (!compute_next()) std::this_thread::yield();
     }
   }
 }
