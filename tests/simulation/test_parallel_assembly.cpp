@@ -33,7 +33,8 @@ constexpr int kElements = 200;    // per beam
 /// What one evaluation produced.
 struct Evaluation {
   Eigen::VectorXd residual, full_residual;
-  std::vector<double> tangent;  ///< the values of the sparse tangent, in its storage order
+  Eigen::VectorXd residual_alone;  ///< evaluated without the tangent
+  std::vector<double> tangent;     ///< the values of the sparse tangent, in its storage order
   std::vector<contact::ContactState> contact;
 };
 
@@ -80,6 +81,7 @@ class Bundle {
     const solver::SparseMatrix& k = problem_->tangent();
     e.tangent.assign(k.valuePtr(), k.valuePtr() + k.nonZeros());
     e.contact = problem_->contact_states();
+    problem_->evaluate(e.residual_alone, false);
     return e;
   }
 
@@ -100,6 +102,9 @@ void expect_identical(const Evaluation& a, const Evaluation& b, int threads) {
   ASSERT_EQ(a.residual.size(), b.residual.size());
   for (Eigen::Index i = 0; i < a.residual.size(); ++i)
     ASSERT_TRUE(same_bits(a.residual[i], b.residual[i])) << threads << " threads, residual " << i;
+  for (Eigen::Index i = 0; i < a.residual.size(); ++i)
+    ASSERT_TRUE(same_bits(a.residual_alone[i], b.residual_alone[i]))
+        << threads << " threads, residual without tangent " << i;
   for (Eigen::Index i = 0; i < a.full_residual.size(); ++i)
     ASSERT_TRUE(same_bits(a.full_residual[i], b.full_residual[i])) << threads << " threads, reaction " << i;
   ASSERT_EQ(a.tangent.size(), b.tangent.size());

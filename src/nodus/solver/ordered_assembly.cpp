@@ -12,13 +12,15 @@ namespace {
 
 /// Buffers of the ring on several threads.
 constexpr std::size_t kRing = 256;
-/// Below this many elements the loop runs on one thread: a parallel region would cost more than it saves.
-constexpr std::size_t kParallelElements = 256;
+/// Below the work of this many beam elements with their tangent (2.7 ms) the loop runs on one thread: the
+/// threads would gain little, and on a busy machine a parallel region can wait milliseconds for a thread
+/// that the system has not yet run.
+constexpr double kParallelElements = 256.0;
 
 }  // namespace
 
-std::size_t assembly_buffers(std::size_t count) {
-  if (count < kParallelElements || omp_get_max_threads() < 2) return 1;
+std::size_t assembly_buffers(std::size_t count, double relative_cost) {
+  if (static_cast<double>(count) * relative_cost < kParallelElements || omp_get_max_threads() < 2) return 1;
   return std::min(kRing, count);
 }
 

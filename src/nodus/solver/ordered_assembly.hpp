@@ -15,8 +15,9 @@
 namespace nodus::solver {
 
 /// The number of buffers of the ring for `count` elements: 1 where the loop runs on one thread (a single
-/// thread, or fewer elements than pay for a parallel region).
-std::size_t assembly_buffers(std::size_t count);
+/// thread, or less work than pays for a parallel region). `relative_cost`: the cost of an element relative to
+/// a beam element with its tangent (about 10 us).
+std::size_t assembly_buffers(std::size_t count, double relative_cost = 1.0);
 
 /// Calls compute(k, slot) for every k in [0, count) on all threads, and scatter(k, slot) on one thread, in
 /// increasing k, each after compute(k, slot); `slot` = k mod `buffers` names the buffer of element k.
@@ -33,9 +34,10 @@ class OrderedAssembly {
   /// scatter(k, contribution) on one thread in increasing k, with the contribution computed for k.
   /// compute() may write to its contribution and to data of element k only, and must not throw; scatter()
   /// may write to what compute() does not read.
+  /// `relative_cost` as for assembly_buffers().
   template <class Compute, class Scatter>
-  void run(std::size_t count, Compute&& compute, Scatter&& scatter) {
-    const std::size_t buffers = assembly_buffers(count);
+  void run(std::size_t count, Compute&& compute, Scatter&& scatter, double relative_cost = 1.0) {
+    const std::size_t buffers = assembly_buffers(count, relative_cost);
     if (buffer_.size() < buffers) buffer_.resize(buffers);
     assemble_in_order(
         count, buffers, [&](std::size_t k, std::size_t slot) { compute(k, buffer_[slot]); },
