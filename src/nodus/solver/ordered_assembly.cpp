@@ -10,8 +10,9 @@
 namespace nodus::solver {
 namespace {
 
-/// Buffers of the ring on several threads.
-constexpr std::size_t kRing = 256;
+/// Buffers of the ring on several threads: small enough to stay in cache (32 contact responses: 740 kB), as
+/// a ring of 256 ran 5 % slower on the 27-fibre bundle (docs/performance.md).
+constexpr std::size_t kRing = 32;
 /// Below the work of this many beam elements with their tangent (2.7 ms) the loop runs on one thread: the
 /// threads would gain little, and on a busy machine a parallel region can wait milliseconds for a thread
 /// that the system has not yet run.
