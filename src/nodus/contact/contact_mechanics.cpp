@@ -65,6 +65,17 @@ ContactResponse contact_response(const ContactElement& e, const beam::ElementVec
                                  const beam::ElementVector& q_j_committed, const NormalLaw& normal,
                                  const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed,
                                  const ResponseOptions& options) {
+  ContactResponse r;
+  contact_response(e, q_i, q_j, q_i_committed, q_j_committed, normal, friction, reversible_committed, options,
+                   r);
+  return r;
+}
+
+void contact_response(const ContactElement& e, const beam::ElementVector& q_i, const beam::ElementVector& q_j,
+                      const beam::ElementVector& q_i_committed, const beam::ElementVector& q_j_committed,
+                      const NormalLaw& normal, const FrictionLaw* friction,
+                      const Eigen::Vector3d& reversible_committed, const ResponseOptions& options,
+                      ContactResponse& r) {
   constexpr int n = beam::kElementDofs;
   // Facing particles: I's particle is the point of its border furthest along +n, J's along -n. Then the gap
   // is n.(r_J - r_I) - h_I - h_J with h the support function of the section, and the particles' motion along
@@ -81,11 +92,11 @@ ContactResponse contact_response(const ContactElement& e, const beam::ElementVec
   Eigen::Matrix<double, 3, 2 * n> c;
   c << -b_i, b_j;
   const Eigen::Vector3d& nrm = e.normal;
-  ContactResponse r;
   r.gap = nrm.dot(b_j * q_j - b_i * q_i);  // Eq. 45 with the particles and the normal fixed
   r.normal_reaction = normal_reaction(normal, r.gap);
   Mat3 stiffness = normal_stiffness(normal, r.gap) * nrm * nrm.transpose();
   Eigen::Vector3d force_on_j = r.normal_reaction * nrm;
+  r.friction = FrictionResponse{};
   if (friction) {
     const Eigen::Vector3d du = (b_j * (q_j - q_j_committed)) - (b_i * (q_i - q_i_committed));
     r.friction = friction_response(*friction, r.normal_reaction, nrm, reversible_committed, du);
@@ -121,7 +132,6 @@ ContactResponse contact_response(const ContactElement& e, const beam::ElementVec
     add(0, f_i);
     add(n, f_j);
   }
-  return r;
 }
 
 }  // namespace nodus::contact

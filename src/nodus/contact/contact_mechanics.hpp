@@ -54,6 +54,13 @@ ContactResponse contact_response(const ContactElement& e, const beam::ElementVec
                                  const beam::ElementVector& q_j_committed, const NormalLaw& normal,
                                  const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed,
                                  const ResponseOptions& options = {});
+/// The same, written into `response` (whose 54 x 54 tangent a caller may keep, rather than copy, across
+/// evaluations).
+void contact_response(const ContactElement& e, const beam::ElementVector& q_i, const beam::ElementVector& q_j,
+                      const beam::ElementVector& q_i_committed, const beam::ElementVector& q_j_committed,
+                      const NormalLaw& normal, const FrictionLaw* friction,
+                      const Eigen::Vector3d& reversible_committed, const ResponseOptions& options,
+                      ContactResponse& response);
 
 /// The transverse material coordinates (xi1, xi2), of norm `radius`, of the point of the border of the
 /// section with directors g1, g2 that lies furthest along `direction`: xi ~ (g1.direction, g2.direction).

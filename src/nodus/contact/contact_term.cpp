@@ -31,27 +31,27 @@ void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> fri
 
 void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
                       solver::SparseAssembler* tangent) {
-  constexpr int kNode = beam::kNodeDofs;
-  std::array<int, 6> blocks{};
-  for (std::size_t k = 0; k < geometry_.elements.size(); ++k) {
+  const auto compute = [&](std::size_t k, ContactResponse& r) {
     const ContactElement& e = geometry_.elements[k];
     const int ei = e.particle_i.element, ej = e.particle_j.element;
     const NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
-    const ContactResponse r =
-        contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
-                         model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
-                         friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_);
+    contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
+                     model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
+                     friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_, r);
     states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
-    const int ni = model_.element_first_node(ei), nj = model_.element_first_node(ej);
-    for (int a = 0; a < 3; ++a) {
-      blocks[static_cast<std::size_t>(a)] = ni + a;
-      blocks[static_cast<std::size_t>(a + 3)] = nj + a;
-    }
+  };
+  const auto scatter = [&](std::size_t k, const ContactResponse& r) {
+    constexpr int kNode = beam::kNodeDofs;
+    const ContactElement& e = geometry_.elements[k];
+    const int ni = model_.element_first_node(e.particle_i.element);
+    const int nj = model_.element_first_node(e.particle_j.element);
+    const std::array<int, 6> blocks{ni, ni + 1, ni + 2, nj, nj + 1, nj + 2};
     for (int b = 0; b < 6; ++b)
       residual.segment<kNode>(model_.node_dof(blocks[static_cast<std::size_t>(b)])) +=
           r.force.segment<kNode>(kNode * b);
     if (tangent) tangent->add(blocks, r.tangent);
-  }
+  };
+  assembly_.run(geometry_.elements.size(), compute, scatter);
 }
 
 void ContactTerm::commit(const model::TermState& /*state*/) {

@@ -13,6 +13,7 @@
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/model/term.hpp"
+#include "nodus/solver/ordered_assembly.hpp"
 
 namespace nodus::contact {
 
@@ -32,6 +33,8 @@ class ContactTerm final : public model::Term {
   std::string_view name() const override { return "contact-friction"; }
   /// The nodes of both elements of every contact element.
   void couplings(std::vector<std::vector<int>>& groups) const override;
+  /// The elements are evaluated on all threads and added up in element order: the sums do not depend on the
+  /// number of threads.
   void add(const model::TermState& state, Eigen::VectorXd& residual,
            solver::SparseAssembler* tangent) override;
   bool evaluates_before_commit() const override { return !geometry_.elements.empty(); }
@@ -65,6 +68,7 @@ class ContactTerm final : public model::Term {
   double regularization_ = 0.0;
   std::optional<FrictionLaw> friction_;
   ResponseOptions options_;
+  solver::OrderedAssembly<ContactResponse> assembly_;  ///< the elements' responses, evaluated on all threads
 };
 
 }  // namespace nodus::contact

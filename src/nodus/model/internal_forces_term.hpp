@@ -24,6 +24,7 @@ class InternalForcesTerm final : public Term {
  private:
   const Model& model_;
   double floor_ = 0.0;
+  InternalForceAssembly assembly_;
 };
 
 }  // namespace nodus::model

@@ -113,23 +113,27 @@ void Model::internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
                            solver::SparseAssembler* assembler) const {
   force.setZero(num_dofs());
   if (assembler) assembler->set_zero();
-  add_internal_force(x, force, assembler);
+  InternalForceAssembly assembly;
+  add_internal_force(x, force, assembler, assembly);
 }
 
 void Model::add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
-                               solver::SparseAssembler* assembler) const {
-  beam::ElementVector f_e;
-  beam::ElementMatrix k_e;
-  for (int e = 0; e < num_elements(); ++e) {
-    const Element& el = elements_[static_cast<std::size_t>(e)];
-    beam::element_internal_force(gather(x, e), properties_[static_cast<std::size_t>(el.beam)], f_e,
-                                 assembler ? &k_e : nullptr);
-    force.segment<beam::kElementDofs>(node_dof(el.first_node)) += f_e;
+                               solver::SparseAssembler* assembler, InternalForceAssembly& assembly) const {
+  const auto compute = [&](std::size_t e, ElementForces& out) {
+    beam::element_internal_force(gather(x, static_cast<int>(e)),
+                                 properties_[static_cast<std::size_t>(elements_[e].beam)], out.force,
+                                 assembler ? &out.tangent : nullptr);
+  };
+  const auto scatter = [&](std::size_t e, const ElementForces& in) {
+    const int first_node = elements_[e].first_node;
+    force.segment<beam::kElementDofs>(node_dof(first_node)) += in.force;
     if (assembler) {
-      const std::array<int, 3> nodes{el.first_node, el.first_node + 1, el.first_node + 2};
-      assembler->add(nodes, k_e);
+      const std::array<int, 3> nodes{first_node, first_node + 1, first_node + 2};
+      assembler->add(nodes, in.tangent);
     }
-  }
+  };
+  // The force alone costs about 0.5 us per element, 1/20 of the force and tangent (docs/performance.md).
+  assembly.run(elements_.size(), compute, scatter, assembler ? 1.0 : 0.05);
 }
 
 }  // namespace nodus::model

@@ -11,13 +11,23 @@
 #include <Eigen/Core>
 
 #include "nodus/beam/beam.hpp"
+#include "nodus/beam/shape_functions.hpp"
 #include "nodus/model/dof_map.hpp"
+#include "nodus/solver/ordered_assembly.hpp"
 
 namespace nodus::solver {
 class SparseAssembler;
 }
 
 namespace nodus::model {
+
+/// One beam element's internal forces and their tangent, as computed before they are added up.
+struct ElementForces {
+  beam::ElementVector force;
+  beam::ElementMatrix tangent;
+};
+/// The buffers of the internal forces' assembly on all threads, kept across calls.
+using InternalForceAssembly = solver::OrderedAssembly<ElementForces>;
 
 /// What the nine unknowns of a beam node measure: r, then g1 and g2.
 inline constexpr DofKind kBeamNodeKinds[beam::kNodeDofs] = {
@@ -41,7 +51,10 @@ struct RigidBody {
 class Model {
  public:
   explicit Model(int gauss_points = 2, double fold_stiffness = 0.0)
-      : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness) {}
+      : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness) {
+    // Checked here: the elements are evaluated in parallel regions, which an exception must not leave.
+    static_cast<void>(beam::gauss_rule(gauss_points));
+  }
 
   /// Adds a beam, its nodes a block of nine unknowns each; returns its index. Beams come before any other
   /// unknowns (std::logic_error otherwise), so that node n is block n.
@@ -104,8 +117,10 @@ class Model {
   void internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
                       solver::SparseAssembler* assembler) const;
   /// Adds the internal forces to `force` (num_dofs() values) and, if `assembler` is not null, their tangent.
+  /// The elements are evaluated on all threads, and added up in element order (`assembly` holds the
+  /// buffers): the sums do not depend on the number of threads.
   void add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
-                          solver::SparseAssembler* assembler) const;
+                          solver::SparseAssembler* assembler, InternalForceAssembly& assembly) const;
 
  private:
   struct Element {
