@@ -111,26 +111,14 @@ class State:
 
 def read_table(path, numeric, text):
     """A CSV file as {column: array}, numeric columns as float arrays; checks that it has the columns
-    `numeric` (with numbers) and `text`."""
-    if not path.is_file():
-        raise ReportError(f"{path}: missing")
-    with open(path, newline="") as f:
-        reader = csv.DictReader(f)
-        rows = list(reader)
-        header = reader.fieldnames or []
-    absent = [c for c in [*numeric, *text] if c not in header]
+    `numeric` (with numbers) and `text` (knot_views.read_table, with this script's error)."""
+    try:
+        table = knot_views.read_table(path, [*numeric])
+    except knot_views.ViewError as e:
+        raise ReportError(str(e)) from None
+    absent = [c for c in text if c not in table]
     if absent:
         raise ReportError(f"{path}: missing column(s) {', '.join(absent)}")
-    table = {}
-    for column in header:
-        values = [row[column] for row in rows]
-        try:
-            table[column] = np.array(values, dtype=float)
-        except ValueError:
-            table[column] = np.array(values, dtype=object)
-    not_numbers = [c for c in numeric if table[c].dtype != float]
-    if not_numbers:
-        raise ReportError(f"{path}: column(s) {', '.join(not_numbers)} not numeric")
     return table
 
 
