@@ -30,6 +30,18 @@ constexpr double kPenaltyFloor = 1e-4;
 /// the total normal force (docs/contact.md, "Loop 3 inside Newton").
 constexpr double kNormalUpdateRatio = 1e-3;
 
+/// Adds the Newton solve `r` to the step's `total`; false, with its failure, if it did not converge.
+bool add_solve(solver::NewtonReport& total, const solver::NewtonReport& r) {
+  total.iterations += r.iterations;
+  total.longest_solve = std::max(total.longest_solve, r.iterations);
+  total.residual = r.residual;
+  total.increment = r.increment;
+  if (r.converged) return true;
+  total.failure = r.failure;
+  total.cancelled = r.cancelled;
+  return false;
+}
+
 }  // namespace
 
 ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& problem,
@@ -121,17 +133,8 @@ void ContactLoops::collect_stats() {
 
 bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
   for (int m = 1;; ++m) {
-    const solver::NewtonReport r = newton_.solve(problem_);
-    total.iterations += r.iterations;
-    total.longest_solve = std::max(total.longest_solve, r.iterations);
-    total.residual = r.residual;
-    total.increment = r.increment;
     ++stats_.normal_iterations;
-    if (!r.converged) {
-      total.failure = r.failure;
-      total.cancelled = r.cancelled;
-      return false;
-    }
+    if (!add_solve(total, newton_.solve(problem_))) return false;
     const contact::ContactGeometry kept = problem_.contact_geometry();
     const std::vector<double> kept_penalty = problem_.zone_penalty();
     const double turn = update_normals();
@@ -202,18 +205,9 @@ bool ContactLoops::solve_normals_inside_newton(solver::NewtonReport& total) {
     return true;
   };
   const solver::NewtonReport r = newton_.solve(problem_, update);
-  total.iterations += r.iterations;
-  total.longest_solve = std::max(total.longest_solve, r.iterations);
-  total.residual = r.residual;
-  total.increment = r.increment;
   stats_.normal_iterations += updates + 1;
   stats_.normals_capped = capped;
-  if (!r.converged) {
-    total.failure = r.failure;
-    total.cancelled = r.cancelled;
-    return false;
-  }
-  return true;
+  return add_solve(total, r);
 }
 
 solver::NewtonReport ContactLoops::solve() {
