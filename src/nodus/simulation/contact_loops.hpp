@@ -31,7 +31,7 @@ struct ContactLawSettings {
   bool facing_particles = false;
   int max_detections = 4;
   /// Loop 3 inside Newton (contact.normal_updates: inside_newton): the normals are updated between Newton
-  /// iterations once the residual has fallen below kNormalUpdateRatio of its first value, and at each
+  /// iterations once the residual has fallen below kNormalUpdateRatio of the total normal force, and at each
   /// converged state, the penalties only there; false: the paper's nested loop, a Newton solve to convergence
   /// after every update.
   bool normals_inside_newton = false;

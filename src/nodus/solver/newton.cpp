@@ -97,7 +97,6 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     problem.evaluate(residual, true);
   }
   double norm = residual.norm();
-  const double first_norm = norm;
   if (!std::isfinite(norm)) {
     report.failure = "the residual is not finite at the start of the step";
     return report;
@@ -175,7 +174,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     spdlog::debug("newton {:2d}: |R| = {:.3e} (tol {:.1e}), |du| = {:.3e}, alpha = {}", it, norm,
                   problem.residual_tolerance(), increment, alpha);
     const bool converged = norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance();
-    const bool changed = update && update({it, norm, first_norm, converged});
+    const bool changed = update && update({it, norm, converged});
     if (converged && !changed) {
       report.converged = true;
       return report;

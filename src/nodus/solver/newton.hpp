@@ -54,9 +54,8 @@ struct NewtonTimings {
 /// Where a Newton solve stands after an iteration, for a fixed point solved inside it.
 struct NewtonProgress {
   int iteration = 0;
-  double residual = 0.0;        ///< |R| after the iteration
-  double first_residual = 0.0;  ///< |R| at the start of the solve
-  bool converged = false;       ///< by the tolerances, for the problem as it is
+  double residual = 0.0;   ///< |R| after the iteration
+  bool converged = false;  ///< by the tolerances, for the problem as it is
 };
 
 /// A fixed point solved together with the equilibrium (the contact normals and penalties of loop 3, Sect. 6):
