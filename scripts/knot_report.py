@@ -32,6 +32,11 @@ Definitions, for each state (the tightened one = the main run's final state, the
 
 Outputs, in DIR/report/ (each written to a temporary name, then renamed):
   knot_report.csv                      one row per state: the numbers above (also printed as a table)
+  fold_check.csv                       the fold check of the main run and of each branch at every stage end
+                                       (steps.csv: min_orientation, the smallest det[g1, g2, r'] over every
+                                       Gauss point and element centre, and min_chord, the smallest element
+                                       chord over h), with a last row per run over all its steps; an element
+                                       is folded where det <= 0 (printed as a summary line)
   reactions_tightened.csv, reactions_NAME.csv   per element: zone, zeta, abscissa, s_i, s_j, midpoint,
                                        normal and tangential reaction, state
   fig14_tightened_reactions.png        reactions along the intermediate geometry, tightened state
@@ -470,6 +475,32 @@ def knot_mask(nodes, extent):
     return (nodes["s"] >= s_a - ZOOM_MARGIN) & (nodes["s"] <= s_b + ZOOM_MARGIN)
 
 
+FOLD_COLUMNS = ["run", "stage", "step", "min_orientation", "min_chord"]
+
+
+def fold_check(runs):
+    """Rows of fold_check.csv for runs [(name, folder)]: each stage end of each run's steps.csv, then the run's
+    smallest values over all its steps (stage "all steps"); [] with a note where steps.csv lacks the columns."""
+    rows = []
+    for name, folder in runs:
+        path = folder / "steps.csv"
+        if not path.is_file():
+            continue
+        with open(path, newline="") as f:
+            steps = list(csv.DictReader(f))
+        if not steps or "min_orientation" not in steps[0]:
+            print(f"note: {path}: no fold check (min_orientation, min_chord) in this run's steps.csv")
+            continue
+        values = [(int(r["step"]), r["stage"], float(r["min_orientation"]), float(r["min_chord"])) for r in steps]
+        for k, (step, stage, orientation, chord) in enumerate(values):
+            if k + 1 == len(values) or values[k + 1][1] != stage:
+                rows.append({"run": name, "stage": stage, "step": step, "min_orientation": orientation,
+                             "min_chord": chord})
+        rows.append({"run": name, "stage": "all steps", "step": values[-1][0],
+                     "min_orientation": min(v[2] for v in values), "min_chord": min(v[3] for v in values)})
+    return rows
+
+
 def report(run_dir):
     for required in ("final_nodes.csv", "contact_final.csv"):
         if not (run_dir / required).is_file():
@@ -501,6 +532,14 @@ def report(run_dir):
             branch_reactions.append((state.label, reactions))
             branch_panels.append((state.label, state.nodes, knot_mask(state.nodes, extent)))
     written.insert(0, write_csv(out_dir / "knot_report.csv", REPORT_COLUMNS, rows))
+    folds = fold_check([("main", run_dir)] + [(name, folder) for name, folder, _ in find_branches(run_dir, summary)])
+    if folds:
+        written.insert(1, write_csv(out_dir / "fold_check.csv", FOLD_COLUMNS, folds))
+        worst = min(folds, key=lambda r: r["min_orientation"])
+        folded = [r for r in folds if r["min_orientation"] <= 0.0]
+        print(f"fold check: smallest det[g1, g2, r'] {worst['min_orientation']:.6g} ({worst['run']}, "
+              f"{worst['stage']}), smallest chord / h {min(r['min_chord'] for r in folds):.6g}: "
+              + (f"FOLDED ELEMENTS in {len(folded)} rows of fold_check.csv" if folded else "no element folded"))
 
     if branch_reactions:
         fig, axes = plt.subplots(len(branch_reactions), 1, figsize=(7.5, 3.8 * len(branch_reactions)),

@@ -50,6 +50,8 @@ py::dict step_dict(const simulation::Simulation& sim, const simulation::StepReco
   d["slipping"] = r.slipping;
   d["loops_converged"] = r.loops_converged;
   d["stabilization_force"] = r.stabilization_force;
+  d["min_orientation"] = r.min_orientation;
+  d["min_chord"] = r.min_chord;
   d["ends_stage"] = r.ends_stage;
   py::dict reactions;
   for (std::size_t c = 0; c < r.sections.size(); ++c) {

@@ -1,8 +1,9 @@
 // Internal force and tangent of the 9-dof beam element against central finite differences, on random deformed
 // states of randomly placed elements (fold stabilisation included); rigid motions give no force. The fold of
-// a 2-point element: free of strain at its Gauss points, so of energy 0 without the stabilisation, and of the
-// stabilisation's closed-form energy with it; on a circular arc the stabilisation is the documented small
-// fraction of the bending energy.
+// a 2-point element: free of strain at its Gauss points, so of energy 0 without the stabilisation and the
+// orientation barrier, and of their closed-form energies with them; the barrier's force and tangent against
+// finite differences between the straight element and its fold; on a circular arc the stabilisation is the
+// documented small fraction of the bending energy.
 
 #include <gtest/gtest.h>
 
@@ -149,8 +150,20 @@ TEST(BeamElementFold, CostsNothingWithTwoGaussPointsAndTheStabilisationWithIt) {
   EXPECT_NEAR(axial_strain(fold, h, gp), 0.0, 1e-14);
   EXPECT_NEAR(axial_strain(fold, h, -gp), 0.0, 1e-14);
   ElementProperties props = s.beam.element_properties(2);
+  props.fold_barrier = 0.0;
   const double ea = props.stiffness(kE33, kE33);
   EXPECT_LT(element_energy(fold, props), 1e-14 * ea * h);  // a zero-energy mode of the 2-point element
+
+  // The orientation barrier: det[g1, g2, r'] = r' . e_x is +1 and -1 at the Gauss points and 0 at the centre,
+  // so gamma (h/2) (D33/2) ((1/2 + 1)^2 + (1/2 - 0)^2) = gamma (h/2) (D33/2) 5/2.
+  EXPECT_NEAR(orientation(element_kinematics(fold, h, -gp)), 1.0, 1e-14);
+  EXPECT_NEAR(orientation(element_kinematics(fold, h, gp)), -1.0, 1e-14);
+  EXPECT_NEAR(orientation(element_kinematics(fold, h, 0.0)), 0.0, 1e-14);
+  ElementProperties barred = s.beam.element_properties(2);
+  barred.fold_barrier = 1.5;
+  const double barrier = 1.5 * (h / 2) * (ea / 2) * 2.5;
+  EXPECT_NEAR(element_energy(fold, barred), barrier, 1e-12 * barrier);
+  EXPECT_EQ(orientation_barrier_energy(s.x(), barred), 0.0);  // at rest J = 1: nothing
 
   // With the stabilisation: beta (h/2) (D33/2) d^2 (D33 the section's axial stiffness), d the axial strain at
   // the centre less the mean at the Gauss points, here -1/2 - 0.
@@ -161,12 +174,53 @@ TEST(BeamElementFold, CostsNothingWithTwoGaussPointsAndTheStabilisationWithIt) {
   const double expected = 0.7 * (h / 2) * (ea / 2) * d * d;
   EXPECT_NEAR(element_energy(fold, props), expected, 1e-12 * expected);
   // Three Gauss points see the fold as well (for comparison: they lock in bending, docs/model.md).
-  EXPECT_GT(element_energy(fold, s.beam.element_properties(3)), 0.1 * expected / 0.7);
+  ElementProperties three = s.beam.element_properties(3);
+  three.fold_barrier = 0.0;
+  EXPECT_GT(element_energy(fold, three), 0.1 * expected / 0.7);
 
   // Uniform stretch: d = 0, nothing added.
   ElementVector stretched = s.x();
   for (int i = 0; i < kElementNodes; ++i) stretched.segment<3>(kNodeDofs * i) *= 1.01;
   EXPECT_NEAR(fold_energy(stretched, props), 0.0, 1e-16 * ea * h);
+}
+
+// Force and tangent of the orientation barrier against finite differences, on states between the straight
+// element and its fold, where the barrier acts at one or more of the Gauss points and the centre.
+TEST(BeamElementFold, OrientationBarrierForceAndTangentAgainstFiniteDifferences) {
+  const StraightElement s;
+  const double h = s.h, a = std::sqrt(3.0) * h / 4.0;
+  ElementVector fold = s.x();
+  fold.segment<3>(0) = Vec3::Zero();
+  fold.segment<3>(9) = Vec3(a, 0.0, 0.0);
+  fold.segment<3>(18) = Vec3::Zero();
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  int active = 0;
+  for (const double t : {0.6, 0.75, 0.9, 1.0}) {
+    ElementVector x = (1.0 - t) * s.x() + t * fold;
+    for (int i = 0; i < kElementDofs; ++i) x[i] += 0.02 * u(rng) * ((i % 9) < 3 ? h : 1.0);
+    ElementProperties props = s.beam.element_properties(2);
+    props.fold_barrier = 2.0;
+    if (orientation_barrier_energy(x, props) > 0.0) ++active;
+    ElementVector f;
+    ElementMatrix k;
+    element_internal_force(x, props, f, &k);
+    const double f_scale = f.cwiseAbs().maxCoeff(), k_scale = k.cwiseAbs().maxCoeff();
+    EXPECT_LT((k - k.transpose()).cwiseAbs().maxCoeff(), 1e-12 * k_scale);
+    const double step = 1e-7;
+    for (int j = 0; j < kElementDofs; ++j) {
+      ElementVector xp = x, xm = x, fp, fm;
+      xp[j] += step;
+      xm[j] -= step;
+      const double fd = (element_energy(xp, props) - element_energy(xm, props)) / (2 * step);
+      EXPECT_NEAR(f[j], fd, 1e-6 * f_scale) << "t " << t << " dof " << j;
+      element_internal_force(xp, props, fp, nullptr);
+      element_internal_force(xm, props, fm, nullptr);
+      const ElementVector dk = (fp - fm) / (2 * step) - k.col(j);
+      EXPECT_LT(dk.cwiseAbs().maxCoeff(), 1e-6 * k_scale) << "t " << t << " column " << j;
+    }
+  }
+  EXPECT_EQ(active, 4);  // the barrier acts in every state compared
 }
 
 TEST(BeamElementFold, SmallOnASmoothBend) {

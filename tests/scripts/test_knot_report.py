@@ -52,7 +52,8 @@ _spec.loader.exec_module(kr)
 NODE_HEADER = "beam,node,s,x,y,z,g1x,g1y,g1z,g2x,g2y,g2z".split(",")
 CONTACT_HEADER = ("zone,beam_i,beam_j,zeta,abscissa_i,abscissa_j,xi1_i,xi2_i,xi1_j,xi2_j,x_i,y_i,z_i,"
                   "x_j,y_j,z_j,nx,ny,nz,gap,normal_force,tangential_force,tx,ty,tz,state").split(",")
-STEPS_HEADER = "step,stage,time,stabilization_force,pull_b_fx,pull_b_fy,pull_b_fz".split(",")
+STEPS_HEADER = ("step,stage,time,stabilization_force,min_orientation,min_chord,pull_b_fx,pull_b_fy,"
+                "pull_b_fz").split(",")
 PNG_SIGNATURE = b"\x89PNG\r\n\x1a\n"
 FIGURES = ["fig14_tightened_reactions.png", "fig17_released_reactions.png", "fig12_stages.png",
            "fig15_released_knots.png",
@@ -290,14 +291,14 @@ class KnotReportTest(unittest.TestCase):
         run_dir = self.tmp / "run"
         nodes, contact, _ = lasso_state(300.0)
         write_run(run_dir, nodes, contact, steps=[
-            {"step": 1, "stage": "tighten", "time": 0.5, "stabilization_force": 0.02,
-             "pull_b_fx": 1.0, "pull_b_fy": 2.0, "pull_b_fz": 0.0},
-            {"step": 2, "stage": "tighten", "time": 1.0, "stabilization_force": 0.01,
-             "pull_b_fx": 0.3, "pull_b_fy": 0.4, "pull_b_fz": 0.0}])
+            {"step": 1, "stage": "form", "time": 0.5, "stabilization_force": 0.02, "min_orientation": 0.9,
+             "min_chord": 0.8, "pull_b_fx": 1.0, "pull_b_fy": 2.0, "pull_b_fz": 0.0},
+            {"step": 2, "stage": "tighten", "time": 1.0, "stabilization_force": 0.01, "min_orientation": 0.95,
+             "min_chord": 0.97, "pull_b_fx": 0.3, "pull_b_fy": 0.4, "pull_b_fz": 0.0}])
         branch_nodes, branch_contact, _ = lasso_state(330.0)
         write_run(run_dir / "branches" / "mu_0.30", branch_nodes, branch_contact, steps=[
-            {"step": 3, "stage": "release", "time": 1.0, "stabilization_force": 0.0,
-             "pull_b_fx": 0.0, "pull_b_fy": 0.0, "pull_b_fz": 0.25}])
+            {"step": 3, "stage": "release", "time": 1.0, "stabilization_force": 0.0, "min_orientation": -0.5,
+             "min_chord": 0.01, "pull_b_fx": 0.0, "pull_b_fy": 0.0, "pull_b_fz": 0.25}])
         stage_nodes, stage_contact, _ = lasso_state(350.0)
         write_table(run_dir / "stages" / "000_loop_nodes.csv", NODE_HEADER, stage_nodes)
         write_table(run_dir / "stages" / "000_loop_contact.csv", CONTACT_HEADER, stage_contact)
@@ -330,6 +331,15 @@ class KnotReportTest(unittest.TestCase):
                 data = (out / figure).read_bytes()
                 self.assertGreater(len(data), 1000)
                 self.assertEqual(data[:8], PNG_SIGNATURE)
+        # The fold check: each stage end, then each run's smallest values over all its steps.
+        with open(out / "fold_check.csv", newline="") as f:
+            folds = [(r["run"], r["stage"], r["step"], float(r["min_orientation"]), float(r["min_chord"]))
+                     for r in csv.DictReader(f)]
+        self.assertEqual(folds, [("main", "form", "1", 0.9, 0.8), ("main", "tighten", "2", 0.95, 0.97),
+                                 ("main", "all steps", "2", 0.9, 0.8), ("mu_0.30", "release", "3", -0.5, 0.01),
+                                 ("mu_0.30", "all steps", "3", -0.5, 0.01)])
+        self.assertIn("fold check: smallest det[g1, g2, r'] -0.5 (mu_0.30, release), smallest chord / h 0.01: "
+                      "FOLDED ELEMENTS in 2 rows", result.stdout)
         self.assertEqual([p.name for p in out.iterdir() if p.name.startswith(".")], [])  # no temporary
 
     # other beams in the stage pictures ----------------------------------------------------------------

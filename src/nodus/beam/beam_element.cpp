@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <Eigen/Geometry>
+
 #include "nodus/beam/shape_functions.hpp"
 
 namespace nodus::beam {
@@ -55,7 +57,62 @@ double add_fold(const ElementVector& x_e, const ElementProperties& props, Elemen
   return c * q * q;
 }
 
+/// The skew matrix [a]x with [a]x b = a x b.
+Eigen::Matrix3d skew(const Eigen::Vector3d& a) {
+  Eigen::Matrix3d m;
+  m << 0.0, -a.z(), a.y(), a.z(), 0.0, -a.x(), -a.y(), a.x(), 0.0;
+  return m;
+}
+
+/// The orientation barrier (orientation_barrier_energy). Adds dW/dx_e to `force` and, if `tangent` is not
+/// null, its Hessian. At a point with m = J0 - J > 0, W_p = c m^2 with c = gamma (h/2) (D33/2), so dW_p/dy =
+/// -2 c m dJ/dy and d2W_p/dy2 = 2 c (dJ/dy dJ/dy^T - m d2J/dy2); J = r' . (g1 x g2) is trilinear in (r', g1,
+/// g2): dJ/dr' = g1 x g2, dJ/dg1 = g2 x r', dJ/dg2 = r' x g1, and its second derivatives are the skew
+/// matrices d2J/dr'dg1 = -[g2]x, d2J/dr'dg2 = [g1]x, d2J/dg1dg2 = -[r']x (and their transposes).
+double add_orientation_barrier(const ElementVector& x_e, const ElementProperties& props, ElementVector* force,
+                               ElementMatrix* tangent) {
+  if (props.fold_barrier <= 0.0) return 0.0;
+  const double c = props.fold_barrier * 0.5 * props.length * 0.5 * props.stiffness(kE33, kE33);
+  double energy = 0.0;
+  const auto add_point = [&](double xi) {
+    const KinematicMap b = kinematic_map(props.length, xi);
+    const KinematicVector y = b * x_e;
+    const double m = kOrientationThreshold - orientation(y);
+    if (!(m > 0.0)) return;
+    energy += c * m * m;
+    if (!force && !tangent) return;
+    const Eigen::Vector3d rp = y.segment<3>(kRp), g1 = y.segment<3>(kG1), g2 = y.segment<3>(kG2);
+    KinematicVector dj = KinematicVector::Zero();
+    dj.segment<3>(kRp) = g1.cross(g2);
+    dj.segment<3>(kG1) = g2.cross(rp);
+    dj.segment<3>(kG2) = rp.cross(g1);
+    if (force) force->noalias() -= 2.0 * c * m * (b.transpose() * dj);
+    if (tangent) {
+      KinematicMatrix d2j = KinematicMatrix::Zero();
+      d2j.block<3, 3>(kRp, kG1) = -skew(g2);
+      d2j.block<3, 3>(kRp, kG2) = skew(g1);
+      d2j.block<3, 3>(kG1, kG2) = -skew(rp);
+      d2j.block<3, 3>(kG1, kRp) = d2j.block<3, 3>(kRp, kG1).transpose();
+      d2j.block<3, 3>(kG2, kRp) = d2j.block<3, 3>(kRp, kG2).transpose();
+      d2j.block<3, 3>(kG2, kG1) = d2j.block<3, 3>(kG1, kG2).transpose();
+      const KinematicMatrix k_y = 2.0 * c * (dj * dj.transpose() - m * d2j);
+      tangent->noalias() += b.transpose() * k_y * b;
+    }
+  };
+  for (const GaussPoint& gp : gauss_rule(props.gauss_points)) add_point(gp.xi);
+  add_point(0.0);
+  return energy;
+}
+
 }  // namespace
+
+double orientation(const KinematicVector& y) {
+  return y.segment<3>(kRp).dot(y.segment<3>(kG1).cross(y.segment<3>(kG2)));
+}
+
+double orientation_barrier_energy(const ElementVector& x_e, const ElementProperties& props) {
+  return add_orientation_barrier(x_e, props, nullptr, nullptr);
+}
 
 double fold_energy(const ElementVector& x_e, const ElementProperties& props) {
   return add_fold(x_e, props, nullptr, nullptr);
@@ -71,7 +128,7 @@ double element_energy(const ElementVector& x_e, const ElementProperties& props) 
     const StrainVector eps = strain_measures(element_kinematics(x_e, props.length, gp.xi));
     energy += 0.5 * gp.weight * 0.5 * props.length * eps.dot(props.stiffness * eps);
   }
-  return energy + fold_energy(x_e, props);
+  return energy + fold_energy(x_e, props) + orientation_barrier_energy(x_e, props);
 }
 
 void element_internal_force(const ElementVector& x_e, const ElementProperties& props, ElementVector& force,
@@ -92,6 +149,7 @@ void element_internal_force(const ElementVector& x_e, const ElementProperties& p
     }
   }
   add_fold(x_e, props, &force, tangent);
+  add_orientation_barrier(x_e, props, &force, tangent);
 }
 
 }  // namespace nodus::beam

@@ -25,7 +25,24 @@ struct ElementProperties {
   SectionMatrix stiffness;      ///< D of section.hpp
   int gauss_points = 2;         ///< along the axis
   double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (fold_energy), >= 0 [-]
+  double fold_barrier = 1.0;    ///< gamma of the orientation barrier (orientation_barrier_energy), >= 0 [-]
 };
+
+/// The orientation of the section against the axis at a point of the axis: J = det[g1, g2, r'] =
+/// r' . (g1 x g2) [-]. It is 1 in the reference state and 1 + O(strain) in any state the beam model
+/// describes; J <= 0 means the axis runs against its section, as at one Gauss point of a folded element.
+double orientation(const KinematicVector& y);
+
+/// J0 of orientation_barrier_energy: the orientation below which the barrier acts [-].
+inline constexpr double kOrientationThreshold = 0.5;
+
+/// The energy of the orientation barrier [N mm]: gamma (h/2) (D33/2) sum_p <J0 - J(xi_p)>_+^2 over the
+/// element's Gauss points and its centre, with J = orientation(), J0 = kOrientationThreshold = 1/2 and D33 =
+/// D(E33, E33) the axial stiffness. It is exactly zero wherever J >= 1/2 at those points, that is in every
+/// state of small strain (J = 1 + O(strain)), so it leaves such results unchanged bit for bit; but the fold
+/// of a 2-point element (fold_energy) has J = -1 at one Gauss point and J = 0 at the centre, and costs
+/// gamma (5/8) h D33, the energy of the whole element at a uniform axial strain E33 of 1.1 (docs/model.md).
+double orientation_barrier_energy(const ElementVector& x_e, const ElementProperties& props);
 
 /// The energy that stabilises the fold of a reduced-integrated element [N mm]. With 2 Gauss points an element
 /// can fold back on itself at no cost: its middle node out, its end nodes together, the tangent r' of unit

@@ -15,6 +15,7 @@ int Model::add_beam(const beam::BeamDefinition& definition) {
   const beam::Beam& b = beams_.back();
   properties_.push_back(b.element_properties(gauss_points_));
   properties_.back().fold_stiffness = fold_stiffness_;
+  properties_.back().fold_barrier = fold_barrier_;
   const int index = static_cast<int>(beams_.size()) - 1;
   first_element_.push_back(num_elements());
   for (int e = 0; e < b.num_elements(); ++e) elements_.push_back({index, b.node(2 * e)});
@@ -68,6 +69,29 @@ std::vector<std::vector<int>> Model::element_nodes() const {
   nodes.reserve(elements_.size());
   for (const Element& e : elements_) nodes.push_back({e.first_node, e.first_node + 1, e.first_node + 2});
   return nodes;
+}
+
+FoldCheck Model::fold_check(const Eigen::VectorXd& x) const {
+  FoldCheck check;
+  for (int e = 0; e < num_elements(); ++e) {
+    const beam::ElementVector x_e = gather(x, e);
+    const beam::ElementProperties& p = properties_[static_cast<std::size_t>(elements_[e].beam)];
+    const auto look = [&](double xi) {
+      const double j = beam::orientation(beam::element_kinematics(x_e, p.length, xi));
+      if (check.orientation_element < 0 || j < check.min_orientation) {
+        check.min_orientation = j;
+        check.orientation_element = e;
+      }
+    };
+    for (const beam::GaussPoint& gp : beam::gauss_rule(p.gauss_points)) look(gp.xi);
+    look(0.0);
+    const double chord = (x_e.segment<3>(2 * beam::kNodeDofs) - x_e.segment<3>(0)).norm() / p.length;
+    if (check.chord_element < 0 || chord < check.min_chord) {
+      check.min_chord = chord;
+      check.chord_element = e;
+    }
+  }
+  return check;
 }
 
 beam::ElementVector Model::gather(const Eigen::VectorXd& x, int element) const {

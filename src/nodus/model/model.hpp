@@ -48,10 +48,25 @@ struct RigidBody {
                                                               ///< bound section centres [mm]
 };
 
+/// Whether any element is folded back on itself (Model::fold_check).
+struct FoldCheck {
+  /// The smallest orientation det[g1, g2, r'] (beam::orientation) over every Gauss point and element centre
+  /// [-]: 1 at rest, <= 0 where an axis runs against its section.
+  double min_orientation = 1.0;
+  int orientation_element = -1;  ///< the element where it is found (-1: no elements)
+  /// The smallest chord |r_3 - r_1| / h of an element (its end nodes' distance over its reference length)
+  /// [-]: 1 for a straight unstretched element, 1 - (h/R)^2/24 + O((h/R)^4) on an unstretched arc of radius
+  /// R, 0 for a complete fold.
+  double min_chord = 1.0;
+  int chord_element = -1;  ///< the element where it is found
+};
+
 class Model {
  public:
-  explicit Model(int gauss_points = 2, double fold_stiffness = 0.0)
-      : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness) {
+  /// `fold_stiffness`, `fold_barrier`: beta of beam::fold_energy and gamma of
+  /// beam::orientation_barrier_energy, for every element.
+  explicit Model(int gauss_points = 2, double fold_stiffness = 0.0, double fold_barrier = 1.0)
+      : gauss_points_(gauss_points), fold_stiffness_(fold_stiffness), fold_barrier_(fold_barrier) {
     // Checked here: the elements are evaluated in parallel regions, which an exception must not leave.
     static_cast<void>(beam::gauss_rule(gauss_points));
   }
@@ -89,6 +104,7 @@ class Model {
   int element_beam(int element) const { return elements_[static_cast<std::size_t>(element)].beam; }
   int gauss_points() const { return gauss_points_; }
   double fold_stiffness() const { return fold_stiffness_; }
+  double fold_barrier() const { return fold_barrier_; }
 
   /// Reference configuration (every unknown: nine values per node, then the other blocks).
   const Eigen::VectorXd& reference() const { return reference_; }
@@ -110,6 +126,9 @@ class Model {
   Eigen::Matrix<double, beam::kNumStrains, Eigen::Dynamic> element_strains(const Eigen::VectorXd& x,
                                                                            double xi = 0.0) const;
 
+  /// The orientation at every Gauss point and element centre and the chord of every element in state `x`.
+  FoldCheck fold_check(const Eigen::VectorXd& x) const;
+
   /// Total strain energy [N mm].
   double internal_energy(const Eigen::VectorXd& x) const;
   /// Internal force vector over all unknowns (prescribed ones too: there it carries the reactions), and the
@@ -130,6 +149,7 @@ class Model {
 
   int gauss_points_;
   double fold_stiffness_;
+  double fold_barrier_;
   std::vector<beam::Beam> beams_;
   std::vector<RigidBody> bodies_;
   std::vector<beam::ElementProperties> properties_;  ///< one per beam

@@ -465,6 +465,7 @@ struct SolverSettings {
   int krylov_iterations = ::nodus::solver::NewtonSettings{}.krylov_iterations;  ///< >= 1
   int gauss_points = 2;         ///< Gauss points per element along the axis, 1..5
   double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (beam_element.hpp), >= 0
+  double fold_barrier = 1.0;    ///< gamma of the orientation barrier (beam_element.hpp), >= 0
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<SolverSettings>> keys();
@@ -502,6 +503,10 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
       K::real("solver.fold_stiffness", &SolverSettings::fold_stiffness, "", ">= 0", ranges::non_negative,
               "beta of the energy that keeps a 2-point element from folding back on itself at "
               "no cost; 0: none (docs/model.md)"),
+      K::real("solver.fold_barrier", &SolverSettings::fold_barrier, "", ">= 0", ranges::non_negative,
+              "gamma of the energy against an axis that turns against its section (det[g1, g2, r'] < 1/2), "
+              "which keeps every element from folding; zero in any state of small strain; 0: none "
+              "(docs/model.md)"),
   };
   return keys;
 }

@@ -23,7 +23,7 @@ constexpr double kDegree = std::numbers::pi / 180.0;
 constexpr const char* kBodyDofNames[] = {"x", "y", "z", "rx", "ry", "rz"};
 
 model::Model build_model(const scenario::Scenario& s) {
-  model::Model model(s.solver.gauss_points, s.solver.fold_stiffness);
+  model::Model model(s.solver.gauss_points, s.solver.fold_stiffness, s.solver.fold_barrier);
   for (const scenario::BeamSpec& b : s.beams) {
     const scenario::Material& m = s.materials.at(static_cast<std::size_t>(b.material));
     model.add_beam({b.name, b.length, b.radius, b.elements, b.start, b.direction, b.director1,
@@ -428,6 +428,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             detect_contact();
           }
           record.stabilization_force = problem_->stabilization_force();
+          const model::FoldCheck folds = model_.fold_check(problem_->committed_state());
+          record.min_orientation = folds.min_orientation;
+          record.min_chord = folds.min_chord;
           record.zones = static_cast<int>(contact_.zones.size());
           record.contact_elements = static_cast<int>(contact_.elements.size());
           for (int c = 0; c < conditions_.size(); ++c)

@@ -54,7 +54,11 @@ struct StepRecord {
   /// contact.max_normal_iterations); true without contact forces (no loops).
   bool loops_converged = true;
   double stabilization_force = 0.0;  ///< |viscous stabilisation drag| over all nodes [N] (0: none)
-  bool ends_stage = false;           ///< the step reached the end of its stage
+  /// The fold check of the converged state (model::FoldCheck): the smallest det[g1, g2, r'] over every Gauss
+  /// point and element centre, and the smallest element chord over its reference length [-].
+  double min_orientation = 1.0;
+  double min_chord = 1.0;
+  bool ends_stage = false;  ///< the step reached the end of its stage
 };
 
 struct RunSummary {
