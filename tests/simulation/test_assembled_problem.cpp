@@ -10,7 +10,8 @@
 // problem's own contact_states() is not part of the API these tests hold to).
 //
 // Only the public API of EquilibriumProblem that is kept: the constructor, set_contact, set_contact_laws,
-// set_stabilization, set_time, commit, evaluate, tangent, unknowns, set_unknowns, full_residual, size.
+// set_stabilization, set_time, commit, restore, evaluate, tangent, unknowns, set_unknowns, full_residual,
+// size. restore() also puts back the contact elements and penalties that a failed step attempt changed.
 
 #include <gtest/gtest.h>
 
@@ -243,6 +244,38 @@ TEST(AssembledProblem, EveryTermIsPresent) {
   with.problem->set_unknowns(u);
   with.problem->evaluate(r_late, false);
   EXPECT_GT((r_late - r_with).norm(), 0.01);
+}
+
+TEST(AssembledProblem, RestoreGoesBackToTheCommittedContactElementsAndPenalties) {
+  // A failed step attempt: a new set of contact elements (here B's only), a penalty raised by loop 3, the
+  // unknowns moved. restore() must give back the committed state's residual exactly, contact included.
+  std::mt19937 rng(kStates[0].seed);
+  Assembly a(true, 0.0);
+  const Eigen::VectorXd u = slid_state(a.model, kStates[0].slide_b, kStates[0].slide_c, 1e-5, rng);
+  a.problem->set_time(0.5);
+  a.problem->set_unknowns(u);
+  Eigen::VectorXd committed_residual;
+  a.problem->evaluate(committed_residual, true);
+  a.problem->commit();
+  const std::size_t zones = a.geometry.zones.size();
+  ASSERT_GE(zones, 2u);
+
+  contact::ContactGeometry fewer = a.geometry;
+  fewer.zones.resize(1);
+  fewer.elements.resize(static_cast<std::size_t>(fewer.zones[0].num_elements));
+  a.problem->set_contact(fewer, {1e3 * kPenalty}, std::vector<Vec3>(fewer.elements.size(), Vec3::Zero()));
+  a.problem->set_time(0.75);
+  a.problem->set_unknowns(u * 1.001);
+  Eigen::VectorXd failed;
+  a.problem->evaluate(failed, true);
+  ASSERT_GT((failed - committed_residual).norm(), 1e-3);
+
+  a.problem->restore();
+  EXPECT_EQ(a.problem->contact_geometry().elements.size(), a.geometry.elements.size());
+  EXPECT_EQ(a.problem->zone_penalty(), std::vector<double>(zones, kPenalty));
+  Eigen::VectorXd restored;
+  a.problem->evaluate(restored, true);
+  EXPECT_EQ(restored, committed_residual);
 }
 
 // With R_N frozen in the friction tangent (the paper's simplification, the default), the tangent is not the

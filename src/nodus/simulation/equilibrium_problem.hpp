@@ -71,6 +71,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   // solver::SteppedProblem
   void set_time(double t) override;
   void commit() override;
+  /// Back to the committed state: the unknowns and load time, and the contact elements with their penalties
+  /// and committed g_rev (a failed step attempt may have changed them).
   void restore() override;
 
   /// The viscous stabilisation of the stage being solved (default: none).
@@ -127,6 +129,15 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   std::unique_ptr<solver::SparseAssembler> assembler_;
   Eigen::VectorXd residual_full_;
   double residual_tolerance_ = 0.0;
+  /// The contact elements, zone penalties and committed g_rev of the committed state, which restore() puts
+  /// back.
+  struct CommittedContact {
+    contact::ContactGeometry geometry;
+    std::vector<double> penalty;
+    std::vector<Eigen::Vector3d> reversible;
+  };
+  CommittedContact contact_committed_;
+  bool contact_changed_ = false;  ///< set_contact() was called since the last commit
 
   model::TermState term_state() const { return {x_, x_committed_, time_, time_committed_}; }
 };
