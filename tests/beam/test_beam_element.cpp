@@ -245,7 +245,9 @@ TEST(BeamElementFold, SmallOnASmoothBend) {
     const double predicted = (kappa * h) * (kappa * h) * (h / radius) * (h / radius) / 288.0 * axial;
     // The leading order, close for kappa h <= 0.14 and an upper bound beyond (kappa h = 0.53: 0.90 of it).
     EXPECT_LE(fraction, predicted) << "kappa " << kappa;
-    if (kappa * h <= 0.14) EXPECT_NEAR(fraction, predicted, 0.01 * predicted) << "kappa " << kappa;
+    if (kappa * h <= 0.14) {
+      EXPECT_NEAR(fraction, predicted, 0.01 * predicted) << "kappa " << kappa;
+    }
   }
 }
 

@@ -345,7 +345,7 @@ TEST_P(ContactHelix, RadiusAndLineForceMatchTheHelicalRod) {
 }
 
 INSTANTIATE_TEST_SUITE_P(Strategies, ContactHelix, testing::ValuesIn(kStrategies),
-                         [](const testing::TestParamInfo<Strategy>& info) { return info.param.name; });
+                         [](const testing::TestParamInfo<Strategy>& param) { return param.param.name; });
 
 }  // namespace
 }  // namespace nodus::verification
