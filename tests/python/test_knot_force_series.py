@@ -1,0 +1,50 @@
+"""scripts/knot_force_series.py (docs/knot.md, "The tightening force"): the contact-element spacing it reports
+against spacings laid out by hand, the scenario it writes for a force against the example's program, and bad
+--forces rejected with one line and exit status 2 (the runs themselves take minutes and are not made here)."""
+
+import importlib.util
+import sys
+
+import pytest
+
+from conftest import SOURCE_DIR
+
+pytest.importorskip("matplotlib")
+
+
+@pytest.fixture(scope="module")
+def series():
+    sys.path.insert(0, str(SOURCE_DIR / "scripts"))
+    path = SOURCE_DIR / "scripts" / "knot_force_series.py"
+    spec = importlib.util.spec_from_file_location("knot_force_series", path)
+    module = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(module)
+    return module
+
+
+def test_spacing_is_the_median_gap_within_each_zone(series):
+    # Zone 0: gaps 0.03, 0.03, 0.05; zone 1 (its abscissa restarts after zone 0's): gaps 0.02, 0.04. The jump
+    # between zones (0.11 -> 0.5) is not a gap. Median of (0.03, 0.03, 0.05, 0.02, 0.04) = 0.03.
+    reactions = {"zone": [0, 0, 0, 0, 1, 1, 1], "abscissa_mm": [0.0, 0.03, 0.06, 0.11, 0.5, 0.52, 0.56]}
+    assert series.element_spacing(reactions) == pytest.approx(0.03, abs=1e-15)
+    assert series.element_spacing({"zone": [0], "abscissa_mm": [0.2]}) != series.element_spacing(reactions)
+
+
+def test_scenario_of_a_force_is_the_example_program_with_that_pull(series, tmp_path):
+    run_dir = series.run_force(tmp_path, 2.0, 300, True, "/bin/true", 1)  # /bin/true: nothing is run
+    text = (tmp_path / "force_2" / "knot.yaml").read_text()
+    assert run_dir == tmp_path / "force_2" / "run"
+    assert "pull_b: {force: [2.0, 0, 0]}" in text or "pull_b: {force: [2, 0, 0]}" in text
+    assert "name: mu_0.30" in text and "mu_0.25" not in text and "mu_0.20" not in text
+    example = (SOURCE_DIR / "examples" / "monofilament_knot.yaml").read_text()
+    # Everything but the pull force and the branches is the example's: same stages, keyframes and settings.
+    assert text[text.index("stages:"):text.index("  - name: pull")] == \
+        example[example.index("stages:"):example.index("  - name: pull")]
+
+
+@pytest.mark.parametrize("forces", ["1,x", "0,1", "-2"])
+def test_bad_forces_fail_with_one_line(series, tmp_path, capsys, forces):
+    assert series.main(["knot_force_series.py", str(tmp_path), "--forces", forces]) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("knot_force_series: --forces: expected")
+    assert not any(tmp_path.iterdir())  # nothing written
