@@ -6,7 +6,9 @@ LOG: the stderr of `nodus run SCENARIO --out DIR` with `output.progress_seconds:
 main run and each branch (lines labelled `branch NAME: `), the true time left at each line is the elapsed time
 of that run's last line minus the line's own; the estimate is the line's `remaining ~X s`. Prints, per run,
 the ratio estimate / truth over the lines after 20 %, 50 % and 80 % of the run's load time (worst of each),
-and the last line where the ratio is outside [1/2, 2] while more than 20 % is done.
+and the last line where the ratio is outside [1/2, 2] while more than 20 % is done. Lines whose truth is
+below 5 % of the run's wall time (or 1 s) are left out: there the printed estimate's rounding and the
+last steps' cost decide the ratio.
 """
 import re
 import sys
@@ -34,7 +36,7 @@ def main(path):
         for t, _, elapsed, left, stage, step in lines:
             truth = total - elapsed
             done = (t - t0) / (end - t0)
-            if truth < 1.0 or left != left:  # the last second: the estimate is printed to 1 s or 0.1 s
+            if truth < max(1.0, 0.05 * total) or left != left:  # the run's last 5 %: see the docstring
                 continue
             ratio = left / truth
             for f in worst:
