@@ -39,7 +39,8 @@ inline constexpr double kOrientationThreshold = 0.5;
 /// The energy of the orientation barrier [N mm]: gamma (h/2) (D33/2) sum_p <J0 - J(xi_p)>_+^2 over the
 /// element's Gauss points and its centre, with J = orientation(), J0 = kOrientationThreshold = 1/2 and D33 =
 /// D(E33, E33) the axial stiffness. It is exactly zero wherever J >= 1/2 at those points, that is in every
-/// state of small strain (J = 1 + O(strain)), so it leaves such results unchanged bit for bit; but the fold
+/// state of small strain (J = 1 + O(strain)), so a run none of whose iterates comes below 1/2 is unchanged
+/// bit for bit, and a converged state above it solves the same equations as without; but the fold
 /// of a 2-point element (fold_energy) has J = -1 at one Gauss point and J = 0 at the centre, and costs
 /// gamma (5/8) h D33, the energy of the whole element at a uniform axial strain E33 of 1.1 (docs/model.md).
 double orientation_barrier_energy(const ElementVector& x_e, const ElementProperties& props);

@@ -160,7 +160,7 @@ void EquilibriumProblem::restore() {
   time_ = time_committed_;
   // A failed attempt leaves the contact elements of its last detection and the penalties its loop 3
   // adjusted, by up to 1e3 a pass: carried into the next attempt, they compounded over the cutbacks of one
-  // step (the double helix at 30 degrees: 400 N/mm to 7.6e12 N/mm over 8 cutbacks, and a first residual of
+  // step (the double helix at 30 degrees: from 1.4e9 to 7.6e12 N/mm over 8 cutbacks, and a first residual of
   // 2e10 N). The next attempt starts from those of the committed state.
   if (contact_changed_ || contact_->zone_penalty() != contact_committed_.penalty) {
     contact_->set_elements(contact_committed_.geometry, contact_committed_.penalty,
