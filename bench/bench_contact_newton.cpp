@@ -5,10 +5,12 @@
 //                             loop-2 iteration, i.e. once per few Newton iterations)
 //   BM_ContactAssembly        EquilibriumProblem::evaluate(r, true): beams and contact elements, residual and
 //                             tangent
-//   BM_ContactFactorizeSolve  CHOLMOD factorisation and solve (analysis once, outside the loop)
+//   BM_ContactFactorizeSolve  factorisation and solve by each sparse direct solver (analysis once, outside
+//                             the loop)
 // The state is not updated, so every iteration does the same work. Argument: number of fibres (100 elements
 // each). Results and commands: docs/performance.md.
 
+#include <chrono>
 #include <memory>
 #include <vector>
 
@@ -82,12 +84,19 @@ void BM_ContactAssembly(benchmark::State& state) {
   set_counters(state, s);
 }
 
+/// Second argument: the solver (nodus::solver::LinearSolverKind: 0 cholmod, 1 cholmod_ldlt, 2 umfpack, 3
+/// mumps_ldlt, 4 mumps_lu). The bundle has no friction, so its tangent is symmetric: the LU solvers factorise
+/// the whole matrix as they would the varying friction tangent, which has the same pattern.
 void BM_ContactFactorizeSolve(benchmark::State& state) {
   Setup s(static_cast<int>(state.range(0)));
-  auto linear = nodus::solver::make_linear_solver(nodus::solver::LinearSolverKind::cholmod);
+  const auto kind = static_cast<nodus::solver::LinearSolverKind>(state.range(1));
+  auto linear = nodus::solver::make_linear_solver(kind);
   Eigen::VectorXd r, du;
   s.problem->evaluate(r, true);
+  const auto start = std::chrono::steady_clock::now();
   linear->analyze(s.problem->tangent());
+  state.counters["analyze_ms"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   bool ok = true;
   for (auto _ : state) {
     ok = linear->factorize(s.problem->tangent()) && ok;
@@ -96,15 +105,32 @@ void BM_ContactFactorizeSolve(benchmark::State& state) {
     benchmark::ClobberMemory();
   }
   if (!ok) state.SkipWithError("factorize reported a singular matrix");
+  // The Newton increment solves K du = r: its relative residual says the factor is sound.
+  state.counters["rel_residual"] = (s.problem->tangent() * du - r).norm() / r.norm();
   set_counters(state, s);
+  state.SetLabel(linear->name());
 }
 
 void sizes(benchmark::internal::Benchmark* b) {
   b->Arg(7)->Arg(27)->Arg(75)->Unit(benchmark::kMillisecond);
 }
 
+/// CHOLMOD's simplicial LDL^T (the `cholmod` solver's fallback for indefinite tangents until MUMPS took its
+/// place) and UMFPACK are left out at 75 fibres, where one factorisation takes minutes.
+void sizes_and_solvers(benchmark::internal::Benchmark* b) {
+  using nodus::solver::LinearSolverKind;
+  for (int fibres : {7, 27, 75})
+    for (LinearSolverKind kind :
+         {LinearSolverKind::cholmod, LinearSolverKind::cholmod_ldlt, LinearSolverKind::umfpack,
+          LinearSolverKind::mumps_ldlt, LinearSolverKind::mumps_lu})
+      if (fibres < 75 || kind == LinearSolverKind::cholmod || kind == LinearSolverKind::mumps_ldlt ||
+          kind == LinearSolverKind::mumps_lu)
+        b->Args({fibres, static_cast<int>(kind)});
+  b->ArgNames({"fibres", "solver"})->Unit(benchmark::kMillisecond);
+}
+
 }  // namespace
 
 BENCHMARK(BM_ContactDetection)->Apply(sizes);
 BENCHMARK(BM_ContactAssembly)->Apply(sizes);
-BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes);
+BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes_and_solvers);

@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs nodus's build dependencies from Debian's packages (Debian 12), if any is missing.
 set -euo pipefail
-packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libyaml-cpp-dev
+packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libmumps-seq-dev libyaml-cpp-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libopenblas0-openmp python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest)
+# libmumps-seq-dev: MUMPS in one process (multifrontal LDL^T with pivoting, LU), solver.linear_solver: mumps.
 # python3-dev, pybind11-dev: the Python module (python/); python3-pytest runs its tests.
 # python3-numpy, python3-matplotlib: the module's arrays, the knot example's loading program and report
 # (scripts/knot_*.py) and the Python examples.

@@ -3,6 +3,8 @@
 
 #include <gtest/gtest.h>
 
+#include <tuple>
+
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -87,6 +89,37 @@ TEST(SimulationContact, TheFrictionTangentFollowsItsKeyNotTheLinearSolver) {
   EXPECT_FALSE(coupling("contact: {friction: 0.3}\n"));
   EXPECT_TRUE(
       coupling("contact: {friction: 0.3, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n"));
+}
+
+TEST(SimulationContact, TheSolutionDoesNotDependOnTheLinearSolver) {
+  // Rod a pressed onto rod b and dragged along it with friction (8 elements a rod, for the sanitizer build's
+  // sake): every solver factorises the same tangents, so the runs take the same steps and iterations and end
+  // in the same state, to the solvers' rounding.
+  const auto run = [](const std::string& sections) {
+    std::string text = pair_scenario(sections);
+    const std::string away = "a_end: {translation: [0, 0.5, 0]}";
+    text.replace(text.find(away), away.size(), "a_end: {translation: [0.2, -0.03, 0]}");
+    for (std::size_t at; (at = text.find("elements: 20")) != std::string::npos;)
+      text.replace(at, 12, "elements: 8");
+    Simulation sim(scenario::parse_scenario(text, "pair.yaml"));
+    Recorder recorder;
+    const RunSummary summary = sim.run({&recorder});
+    EXPECT_TRUE(summary.converged) << sections << summary.failure;
+    EXPECT_GT(recorder.records.back().contact_elements, 0) << sections;
+    return std::make_tuple(summary.steps, summary.newton_iterations, Eigen::VectorXd(sim.state()));
+  };
+  const auto check = [](const auto& reference, const auto& other, const std::string& what) {
+    EXPECT_EQ(std::get<0>(other), std::get<0>(reference)) << what;
+    EXPECT_EQ(std::get<1>(other), std::get<1>(reference)) << what;
+    EXPECT_LT((std::get<2>(other) - std::get<2>(reference)).template lpNorm<Eigen::Infinity>(), 1e-9) << what;
+  };
+  // The symmetric tangent: CHOLMOD's LL^T (the default) against MUMPS's LDL^T and UMFPACK's LU.
+  const auto frozen = run("contact: {friction: 0.3}\n");
+  check(frozen, run("contact: {friction: 0.3}\nsolver: {linear_solver: mumps}\n"), "mumps, frozen");
+  check(frozen, run("contact: {friction: 0.3}\nsolver: {linear_solver: umfpack}\n"), "umfpack, frozen");
+  // The varying friction tangent, not symmetric: UMFPACK's LU against MUMPS's.
+  const std::string varying = "contact: {friction: 0.3, friction_tangent: varying}\nsolver: {linear_solver: ";
+  check(run(varying + "umfpack}\n"), run(varying + "mumps}\n"), "mumps, varying");
 }
 
 }  // namespace

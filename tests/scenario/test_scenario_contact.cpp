@@ -250,6 +250,10 @@ TEST(ScenarioContact, FrictionTangentIsItsOwnKey) {
   EXPECT_EQ(parse("contact: {friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n")
                 .contact.friction_tangent,
             FrictionTangent::varying);
+  // MUMPS factorises it by LU.
+  const Scenario mumps = parse("contact: {friction_tangent: varying}\nsolver: {linear_solver: mumps}\n");
+  EXPECT_EQ(mumps.solver.linear_solver, LinearSolverKind::mumps);
+  EXPECT_EQ(mumps.contact.friction_tangent, FrictionTangent::varying);
   // Without friction the key is accepted and changes nothing.
   EXPECT_EQ(parse("contact:\n  friction: 0\n  friction_tangent: varying\nsolver: {linear_solver: umfpack}\n")
                 .contact.friction_tangent,
@@ -260,7 +264,7 @@ TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
   const std::string expected =
       "contact.friction_tangent: expected frozen with solver.linear_solver: cholmod (the varying tangent is "
       "not "
-      "symmetric and needs LU: set solver.linear_solver: umfpack), got varying";
+      "symmetric and needs LU: set solver.linear_solver: umfpack or mumps), got varying";
   // CHOLMOD by default, and by name; the line is that of friction_tangent.
   EXPECT_EQ(error_of("contact:\n  friction: 0.3\n  friction_tangent: varying\n"),
             "knot.yaml:27: " + expected);

@@ -1,6 +1,7 @@
 // The sparse direct solvers agree with a dense reference on a positive definite and on an indefinite matrix
-// (CHOLMOD falls back from LL^T to LDL^T), and Newton converges quadratically on a small nonlinear problem,
-// also with its factor kept across iterations (GMRES on it) and with a fixed point solved inside it.
+// (CHOLMOD falls back from LL^T to LDL^T; MUMPS pivots), the LU solvers also on an unsymmetric one, and
+// Newton converges quadratically on a small nonlinear problem, also with its factor kept across iterations
+// (GMRES on it) and with a fixed point solved inside it.
 
 #include <gtest/gtest.h>
 
@@ -47,9 +48,50 @@ TEST_P(LinearSolvers, MatchDenseSolution) {
   }
 }
 
+TEST_P(LinearSolvers, RefactoriseNewValuesOnOneAnalysis) {
+  // One analysis, then the values of a positive definite and of an indefinite matrix of the same pattern:
+  // what a Newton run does between two contact detections.
+  auto solver = make_linear_solver(GetParam());
+  solver->analyze(banded(60, 0.0));
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(60, 1.0, -3.0);
+  for (double shift : {0.0, -4.3, 1.5}) {
+    const SparseMatrix a = banded(60, shift);
+    const Eigen::VectorXd reference = Eigen::MatrixXd(a).fullPivLu().solve(b);
+    ASSERT_TRUE(solver->factorize(a)) << solver->name() << " shift " << shift;
+    EXPECT_LT((solver->solve(b) - reference).norm(), 1e-10 * reference.norm())
+        << solver->name() << " " << shift;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(All, LinearSolvers,
                          ::testing::Values(LinearSolverKind::cholmod, LinearSolverKind::cholmod_ldlt,
-                                           LinearSolverKind::umfpack));
+                                           LinearSolverKind::umfpack, LinearSolverKind::mumps_ldlt,
+                                           LinearSolverKind::mumps_lu));
+
+/// The LU solvers on a matrix that is not symmetric (the friction tangent with R_N varying is not), then on a
+/// singular one, which they must report rather than solve.
+class LuSolvers : public ::testing::TestWithParam<LinearSolverKind> {};
+
+TEST_P(LuSolvers, SolveUnsymmetricAndReportSingular) {
+  SparseMatrix a = banded(50, -2.0);
+  for (int i = 0; i + 3 < 50; ++i) a.coeffRef(i, i + 3) += 0.7;  // an upper entry with no lower twin
+  a.makeCompressed();
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(50, -2.0, 1.0);
+  const Eigen::VectorXd reference = Eigen::MatrixXd(a).fullPivLu().solve(b);
+  auto solver = make_linear_solver(GetParam());
+  solver->analyze(a);
+  ASSERT_TRUE(solver->factorize(a)) << solver->name();
+  EXPECT_LT((solver->solve(b) - reference).norm(), 1e-10 * reference.norm()) << solver->name();
+
+  SparseMatrix singular = a;  // row 7 and its column emptied of values (the pattern stays)
+  for (int k = 0; k < singular.outerSize(); ++k)
+    for (SparseMatrix::InnerIterator it(singular, k); it; ++it)
+      if (it.row() == 7 || it.col() == 7) it.valueRef() = 0.0;
+  EXPECT_FALSE(solver->factorize(singular)) << solver->name();
+}
+
+INSTANTIATE_TEST_SUITE_P(All, LuSolvers,
+                         ::testing::Values(LinearSolverKind::umfpack, LinearSolverKind::mumps_lu));
 
 /// R(u) = A u + u^3 - b (componentwise cube): a smooth problem with a known Jacobian.
 class CubicProblem final : public NonlinearProblem {

@@ -56,7 +56,7 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
                   scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
   if (scenario.contact.friction_tangent == FrictionTangent::varying &&
-      scenario.solver.linear_solver != LinearSolverKind::umfpack) {
+      scenario.solver.linear_solver == LinearSolverKind::cholmod) {
     reader.fail(*MapView(reader, *top.get("contact")).get("friction_tangent"), kFrictionTangentExpected);
   }
   scenario.output = read_output(reader, top);

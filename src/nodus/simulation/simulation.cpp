@@ -177,7 +177,8 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   if (c.friction > 0.0)
     laws.friction = contact::FrictionLaw{
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
-  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack) only.
+  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack, mumps)
+  // only.
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
@@ -187,9 +188,18 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   return laws;
 }
 
-solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind) {
-  return kind == scenario::LinearSolverKind::umfpack ? solver::LinearSolverKind::umfpack
-                                                     : solver::LinearSolverKind::cholmod;
+/// `symmetric`: whether the tangent is (everything but the varying friction tangent); MUMPS then factorises
+/// one triangle by LDL^T, and the whole matrix by LU otherwise.
+solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, bool symmetric) {
+  switch (kind) {
+    case scenario::LinearSolverKind::cholmod:
+      return solver::LinearSolverKind::cholmod;
+    case scenario::LinearSolverKind::umfpack:
+      return solver::LinearSolverKind::umfpack;
+    case scenario::LinearSolverKind::mumps:
+      return symmetric ? solver::LinearSolverKind::mumps_ldlt : solver::LinearSolverKind::mumps_lu;
+  }
+  return solver::LinearSolverKind::cholmod;
 }
 
 }  // namespace
@@ -296,7 +306,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   RunSummary summary;
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
-  auto linear = solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver));
+  auto linear = solver::make_linear_solver(
+      linear_solver_kind(scenario_.solver.linear_solver,
+                         scenario_.contact.friction_tangent != scenario::FrictionTangent::varying));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;

@@ -24,10 +24,12 @@ class LinearSolver {
 };
 
 enum class LinearSolverKind {
-  cholmod,  ///< CHOLMOD supernodal LL^T, falling back to simplicial LDL^T when the matrix is not positive
-            ///< definite (buckled states); METIS ordering
-  cholmod_ldlt,  ///< CHOLMOD simplicial LDL^T only
+  cholmod,  ///< CHOLMOD supernodal LL^T (METIS ordering), falling back to MUMPS's LDL^T with pivoting when
+            ///< the matrix is not positive definite (buckled states)
+  cholmod_ldlt,  ///< CHOLMOD simplicial LDL^T only (no pivoting), for comparison
   umfpack,       ///< UMFPACK LU with partial pivoting
+  mumps_ldlt,    ///< MUMPS multifrontal LDL^T with pivoting (symmetric, definite or not); reads one triangle
+  mumps_lu,      ///< MUMPS multifrontal LU (any matrix)
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind);
