@@ -412,7 +412,7 @@ TEST(ScenarioContactErrors, UnknownKey) {
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
       "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
       "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
-      "normal_updates | max_normal_iterations | normal_tolerance";
+      "normal_updates | max_normal_iterations | normal_tolerance | normal_pass_residual";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
   EXPECT_EQ(error_of("contact: {coulomb: 0.2}\n"),

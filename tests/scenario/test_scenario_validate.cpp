@@ -81,6 +81,7 @@ contact:
   max_detections: 4
   max_normal_iterations: 6
   normal_tolerance: 0.001
+  normal_pass_residual: 0.01
 )";
 
 /// kBase with the value of the first line " LEAF: ..." after the line starting `section` replaced.
@@ -167,8 +168,8 @@ TEST(ScenarioValidate, EveryNumberKeyOutOfRangeGivesTheReadersMessage) {
   checked += check_keys<OutputSettings>("output:", [](Scenario& s) -> OutputSettings& { return s.output; });
   checked +=
       check_keys<ContactSettings>("contact:", [](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 9 + 4 + 13.
-  EXPECT_EQ(checked, 37);
+  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 9 + 4 + 14.
+  EXPECT_EQ(checked, 38);
 }
 
 TEST(ScenarioValidate, ChecksAcrossKeysGiveTheReadersMessage) {
@@ -331,8 +332,8 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
   checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
   // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 4, Keyframe 1, SolverSettings 12,
-  // ContactSettings 19.
-  EXPECT_EQ(checked, 44);
+  // ContactSettings 20.
+  EXPECT_EQ(checked, 45);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();
@@ -394,6 +395,7 @@ TEST(ScenarioFingerprint, SameForTheFileAndTheScenarioBuiltInCode) {
   contact.regularization = 0.001;
   contact.friction = 0.1;
   contact.max_reversible_slip = 0.005;
+  contact.normal_pass_residual = 0.01;
   EXPECT_NO_THROW(validate(made));
   EXPECT_EQ(state_fingerprint_text(made, 1), state_fingerprint_text(base(), 1));
   // The canonical text holds no echo wording: one "PATH = VALUE" line per value.

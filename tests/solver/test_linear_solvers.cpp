@@ -136,6 +136,18 @@ TEST(Newton, ConvergesQuadratically) {
   }
 }
 
+TEST(Newton, ALooseResidualEndsTheSolveEarlier) {
+  CubicProblem exact(40), loose(40);
+  auto linear = make_linear_solver(LinearSolverKind::cholmod);
+  const NewtonReport full = NewtonSolver(*linear, NewtonSettings{}).solve(exact);
+  ASSERT_TRUE(full.converged) << full.failure;
+  const NewtonReport report = NewtonSolver(*linear, NewtonSettings{}).solve(loose, {}, 1e-3);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_LE(report.residual, 1e-3);
+  EXPECT_GT(report.residual, 1e-12);  // short of the tolerance: the solve stopped at the loose residual
+  EXPECT_LT(report.iterations, full.iterations);
+}
+
 TEST(Newton, KeptFactorWithGmresSolvesTheSameProblem) {
   CubicProblem exact(40), lagged(40);
   auto linear = make_linear_solver(LinearSolverKind::cholmod);

@@ -578,6 +578,9 @@ struct ContactSettings {
   bool normals_inside_newton = false;
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
   double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
+  /// Nested loop 3: its Newton solves stop at |R| <= this fraction of the total normal force, the last one at
+  /// the residual tolerance; 0: every solve to the residual tolerance (the paper), >= 0.
+  double normal_pass_residual = 0.0;
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<ContactSettings>> keys();
@@ -678,6 +681,12 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "loop 3 stops when an update turns no normal by more than this and leaves every "
               "zone's penalty as it is: its largest penetration in [max_penetration / 2, "
               "max_penetration], or below max_penetration / 1000 (a zone that only touches)"),
+      K::real("contact.normal_pass_residual", &ContactSettings::normal_pass_residual, "", ">= 0",
+              ranges::non_negative,
+              "nested loop 3: each Newton solve between two updates of the normals and penalties "
+              "stops once |R| <= this fraction of the total normal force, and the solve that ends "
+              "the loop goes on to the residual tolerance. 0: every solve to the residual tolerance, "
+              "as in the paper (docs/contact.md)"),
   };
   return keys;
 }

@@ -37,6 +37,9 @@ struct ContactLawSettings {
   bool normals_inside_newton = false;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]
+  /// Nested loop 3: the Newton solves between updates stop at |R| <= this fraction of the total normal force
+  /// (contact.normal_pass_residual); 0: each to the residual tolerance.
+  double normal_pass_residual = 0.0;
 };
 
 /// What the loops did in the last step, and the contact forces at its end.

@@ -185,6 +185,7 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   laws.normals_inside_newton = c.normals_inside_newton;
   laws.max_normal_iterations = c.max_normal_iterations;
   laws.normal_tolerance = c.normal_tolerance;
+  laws.normal_pass_residual = c.normal_pass_residual;
   return laws;
 }
 

@@ -88,7 +88,8 @@ bool NewtonSolver::solve_linear(const SparseMatrix& tangent, const Eigen::Vector
   return true;
 }
 
-NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpdate& update) {
+NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpdate& update,
+                                 double loose_residual) {
   NewtonReport report;
   Eigen::VectorXd residual;
   Eigen::VectorXd u = problem.unknowns();
@@ -173,7 +174,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     report.increment = increment;
     spdlog::debug("newton {:2d}: |R| = {:.3e} (tol {:.1e}), |du| = {:.3e}, alpha = {}", it, norm,
                   problem.residual_tolerance(), increment, alpha);
-    const bool converged = norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance();
+    const bool converged =
+        (norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance()) ||
+        norm <= loose_residual;
     const bool changed = update && update({it, norm, converged});
     if (converged && !changed) {
       report.converged = true;

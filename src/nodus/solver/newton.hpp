@@ -69,7 +69,10 @@ class NewtonSolver {
       : linear_(linear_solver), settings_(settings) {}
   /// Iterates from the problem's current unknowns. Convergence needs both |R| <= residual_tolerance and
   /// scaled |du| <= increment_tolerance. Call reanalyze() when the tangent pattern changes.
-  NewtonReport solve(NonlinearProblem& problem, const FixedPointUpdate& update = {});
+  /// `loose_residual` > 0: converged as soon as |R| <= loose_residual, whatever the increment (a solve whose
+  /// result only serves to update a fixed point, not as a step's answer).
+  NewtonReport solve(NonlinearProblem& problem, const FixedPointUpdate& update = {},
+                     double loose_residual = 0.0);
   void reanalyze() { analyzed_ = false; }
   const NewtonTimings& timings() const { return timings_; }
 
