@@ -2,6 +2,8 @@
 
 #include <array>
 
+#include <spdlog/spdlog.h>
+
 #include "nodus/solver/sparse_assembler.hpp"
 
 namespace nodus::contact {
@@ -20,6 +22,7 @@ void ContactTerm::set_elements(ContactGeometry geometry, std::vector<double> pen
   penalty_ = std::move(penalty);
   reversible_committed_ = std::move(reversible);
   states_.assign(geometry_.elements.size(), ContactState{});
+  last_regime_.clear();
 }
 
 void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> friction,
@@ -52,6 +55,33 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
     if (tangent) tangent->add(blocks, r.tangent);
   };
   assembly_.run(geometry_.elements.size(), compute, scatter);
+  if (spdlog::should_log(spdlog::level::debug)) log_regime_changes();
+}
+
+void ContactTerm::log_regime_changes() {
+  // Which elements changed regime since the last evaluation (of the same elements): a Newton solve whose
+  // residual wanders while elements keep entering and leaving contact, or sticking and slipping, shows it
+  // here.
+  int pressing = 0, slipping = 0, entered = 0, left = 0, to_slip = 0, to_stick = 0;
+  const bool compare = last_regime_.size() == states_.size();
+  last_regime_.resize(states_.size());
+  for (std::size_t k = 0; k < states_.size(); ++k) {
+    const unsigned char regime = (states_[k].normal_reaction > 0.0 ? 1 : 0) | (states_[k].slip ? 2 : 0);
+    pressing += regime & 1;
+    slipping += (regime >> 1) & 1;
+    if (compare) {
+      const unsigned char changed = regime ^ last_regime_[k];
+      if (changed & 1) ++((regime & 1) ? entered : left);
+      // Stick and slip of an element that presses at both evaluations (one that leaves contact stops
+      // slipping).
+      if ((changed & 2) && (regime & 1) && (last_regime_[k] & 1)) ++((regime & 2) ? to_slip : to_stick);
+    }
+    last_regime_[k] = regime;
+  }
+  spdlog::debug(
+      "contact: {} of {} elements pressing ({} entered, {} left), {} slipping (pressing before and "
+      "after: {} began, {} stuck)",
+      pressing, states_.size(), entered, left, slipping, to_slip, to_stick);
 }
 
 void ContactTerm::commit(const model::TermState& /*state*/) {

@@ -60,11 +60,16 @@ class ContactTerm final : public model::Term {
   void set_states(std::vector<ContactState> states) { states_ = std::move(states); }
 
  private:
+  /// Logs (debug) how many elements press and slip, and how many changed since the last evaluation.
+  void log_regime_changes();
+
   const model::Model& model_;
   ContactGeometry geometry_;
   std::vector<double> penalty_;
   std::vector<Eigen::Vector3d> reversible_committed_;
   std::vector<ContactState> states_;
+  /// For the log of --verbose: per element, pressing (bit 0) and slipping (bit 1) at the last evaluation.
+  std::vector<unsigned char> last_regime_;
   double regularization_ = 0.0;
   std::optional<FrictionLaw> friction_;
   ResponseOptions options_;
