@@ -130,7 +130,7 @@ class MumpsSolver final : public LinearSolver {
 /// `cholmod`: supernodal LL^T where the matrix is positive definite; where it is not (buckled states),
 /// MUMPS's multifrontal LDL^T with pivoting, analysed the first time the pattern needs it. `cholmod_ldlt`:
 /// CHOLMOD's simplicial LDL^T (no pivoting, accepts negative pivots) alone, kept for comparison: on a bundle
-/// of fibres it is 10 times slower than either (docs/performance.md).
+/// of 27 fibres it is 13 times slower than the LL^T and 18 times slower than MUMPS (docs/performance.md).
 class CholmodSolver final : public LinearSolver {
  public:
   explicit CholmodSolver(bool try_llt) : try_llt_(try_llt) {
@@ -140,7 +140,7 @@ class CholmodSolver final : public LinearSolver {
   void analyze(const SparseMatrix& a) override {
     if (try_llt_) {
       llt_.analyzePattern(a);
-      fallback_analyzed_ = false;
+      fallback_analyzed_ = false;  // MUMPS analyses the new pattern only if a factorisation needs it
     } else {
       ldlt_.analyzePattern(a);
     }
@@ -153,16 +153,17 @@ class CholmodSolver final : public LinearSolver {
     llt_.factorize(a);
     using_llt_ = llt_.info() == Eigen::Success && llt_.cholmod().status == CHOLMOD_OK;
     if (using_llt_) return true;
+    if (!fallback_) fallback_ = std::make_unique<MumpsSolver>(true);
     if (!fallback_analyzed_) {
-      fallback_.analyze(a);
+      fallback_->analyze(a);
       fallback_analyzed_ = true;
     }
-    return fallback_.factorize(a);
+    return fallback_->factorize(a);
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
     if (!try_llt_) return ldlt_.solve(b);
     if (using_llt_) return llt_.solve(b);
-    return fallback_.solve(b);
+    return fallback_->solve(b);
   }
   std::string name() const override { return try_llt_ ? "cholmod" : "cholmod_ldlt"; }
 
@@ -172,7 +173,7 @@ class CholmodSolver final : public LinearSolver {
   bool fallback_analyzed_ = false;
   Eigen::CholmodSupernodalLLT<SparseMatrix, Eigen::Upper> llt_;
   Eigen::CholmodSimplicialLDLT<SparseMatrix, Eigen::Upper> ldlt_;
-  MumpsSolver fallback_{true};
+  std::unique_ptr<MumpsSolver> fallback_;  ///< made the first time a tangent is not positive definite
 };
 
 class UmfpackSolver final : public LinearSolver {
