@@ -30,6 +30,13 @@ constexpr double kPenaltyFloor = 1e-4;
 /// the total normal force (docs/contact.md, "Loop 3 inside Newton").
 constexpr double kNormalUpdateRatio = 1e-3;
 
+/// The sum of R_N over the contact elements, at the last evaluation.
+double total_normal_force(const std::vector<ContactState>& states) {
+  double sum = 0.0;
+  for (const ContactState& c : states) sum += c.normal_reaction;
+  return sum;
+}
+
 /// Adds the Newton solve `r` to the step's `total`; false, with its failure, if it did not converge.
 bool add_solve(solver::NewtonReport& total, const solver::NewtonReport& r) {
   total.iterations += r.iterations;
@@ -137,11 +144,9 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     // A solve whose state only serves to update the normals and penalties may stop short of the residual
     // tolerance (contact.normal_pass_residual); the solve that ends the loop goes on to it, below.
     double pass_residual = 0.0;
-    if (laws_.normal_pass_residual > 0.0) {
-      double normal_force = 0.0;  // at the last evaluation: the state the solve starts from
-      for (const ContactState& c : problem_.contact_states()) normal_force += c.normal_reaction;
-      pass_residual = laws_.normal_pass_residual * normal_force;
-    }
+    // The normal force at the last evaluation: of the state the solve starts from.
+    if (laws_.normal_pass_residual > 0.0)
+      pass_residual = laws_.normal_pass_residual * total_normal_force(problem_.contact_states());
     const solver::NewtonReport pass = newton_.solve(problem_, {}, pass_residual);
     if (!add_solve(total, pass)) return false;
     const bool at_tolerance =
@@ -184,9 +189,7 @@ bool ContactLoops::solve_normals_inside_newton(solver::NewtonReport& total) {
       // it turns them by the iterates' overshoots). Only a turn beyond the tolerance is taken: smaller ones,
       // which the nested loop accepts, would hold Newton to the linear convergence of the fixed point.
       if (last) return false;
-      double normal_force = 0.0;
-      for (const ContactState& c : problem_.contact_states()) normal_force += c.normal_reaction;
-      if (!(p.residual <= kNormalUpdateRatio * normal_force)) return false;
+      if (!(p.residual <= kNormalUpdateRatio * total_normal_force(problem_.contact_states()))) return false;
       const contact::ContactGeometry kept = problem_.contact_geometry();
       if (update_normals() > laws_.normal_tolerance) {
         ++updates;
@@ -249,9 +252,7 @@ solver::NewtonReport ContactLoops::solve() {
     Eigen::VectorXd residual;
     problem_.evaluate(residual, false);
     if (residual.norm() <= problem_.residual_tolerance()) break;
-    double normal_force = 0.0;
-    for (const ContactState& c : problem_.contact_states()) normal_force += c.normal_reaction;
-    settled = residual.norm() <= kSetTolerance * normal_force;
+    settled = residual.norm() <= kSetTolerance * total_normal_force(problem_.contact_states());
     spdlog::debug(
         "contact loop 2: |R| = {:.3e} with the new contact elements (tolerance {:.1e}; {:.1e} of "
         "the normal force: {})",

@@ -308,8 +308,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
   auto linear = solver::make_linear_solver(
-      linear_solver_kind(scenario_.solver.linear_solver,
-                         scenario_.contact.friction_tangent != scenario::FrictionTangent::varying));
+      linear_solver_kind(scenario_.solver.linear_solver, !laws_.friction_normal_coupling));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;
