@@ -22,8 +22,7 @@ void ContactTerm::set_elements(ContactGeometry geometry, std::vector<double> pen
   penalty_ = std::move(penalty);
   reversible_committed_ = std::move(reversible);
   states_.assign(geometry_.elements.size(), ContactState{});
-  last_regime_.clear();
-  last_tangential_.clear();
+  last_states_.clear();
 }
 
 void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> friction,
@@ -64,27 +63,24 @@ void ContactTerm::log_regime_changes() {
   // residual wanders while elements keep entering and leaving contact, or sticking and slipping, shows it
   // here.
   int pressing = 0, slipping = 0, entered = 0, left = 0, to_slip = 0, to_stick = 0, reversed = 0;
-  const bool compare = last_regime_.size() == states_.size();
-  last_regime_.resize(states_.size());
-  last_tangential_.resize(states_.size(), Eigen::Vector3d::Zero());
+  const bool compare = last_states_.size() == states_.size();
   for (std::size_t k = 0; k < states_.size(); ++k) {
-    const unsigned char regime = (states_[k].normal_reaction > 0.0 ? 1 : 0) | (states_[k].slip ? 2 : 0);
-    pressing += regime & 1;
-    slipping += (regime >> 1) & 1;
-    if (compare) {
-      const unsigned char changed = regime ^ last_regime_[k];
-      if (changed & 1) ++((regime & 1) ? entered : left);
-      // Stick and slip of an element that presses at both evaluations (one that leaves contact stops
-      // slipping).
-      if ((changed & 2) && (regime & 1) && (last_regime_[k] & 1)) ++((regime & 2) ? to_slip : to_stick);
-      // Slipping at both evaluations, against the direction of the last: across the stick band in one
-      // iteration.
-      if ((regime & 2) && (last_regime_[k] & 2) && states_[k].tangential.dot(last_tangential_[k]) < 0.0)
-        ++reversed;
-    }
-    last_regime_[k] = regime;
-    last_tangential_[k] = states_[k].tangential;
+    const ContactState& now = states_[k];
+    const bool presses = now.normal_reaction > 0.0;
+    pressing += presses;
+    slipping += now.slip;
+    if (!compare) continue;
+    const ContactState& before = last_states_[k];
+    const bool pressed = before.normal_reaction > 0.0;
+    if (presses != pressed) ++(presses ? entered : left);
+    // Stick and slip of an element that presses at both evaluations (one that leaves contact stops
+    // slipping).
+    if (now.slip != before.slip && presses && pressed) ++(now.slip ? to_slip : to_stick);
+    // Slipping at both evaluations, against the direction of the last: across the stick band in one
+    // iteration.
+    if (now.slip && before.slip && now.tangential.dot(before.tangential) < 0.0) ++reversed;
   }
+  last_states_ = states_;
   spdlog::debug(
       "contact: {} of {} elements pressing ({} entered, {} left), {} slipping (pressing before and "
       "after: {} began, {} stuck; {} slip the other way)",

@@ -68,9 +68,8 @@ class ContactTerm final : public model::Term {
   std::vector<double> penalty_;
   std::vector<Eigen::Vector3d> reversible_committed_;
   std::vector<ContactState> states_;
-  /// For the log of --verbose: per element, pressing (bit 0) and slipping (bit 1) at the last evaluation.
-  std::vector<unsigned char> last_regime_;
-  std::vector<Eigen::Vector3d> last_tangential_;  ///< for the log: the friction force at the last evaluation
+  /// For the log of --verbose: the states of the last evaluation logged.
+  std::vector<ContactState> last_states_;
   double regularization_ = 0.0;
   std::optional<FrictionLaw> friction_;
   ResponseOptions options_;
