@@ -1,5 +1,9 @@
 // The rotation-vector parametrisation of rigid bodies: Q(theta) against Eigen's angle-axis, and its first
-// and second derivatives against central finite differences, from theta = 0 to several turns.
+// and second derivatives against central finite differences, from theta = 0 to several turns. The director
+// update of Newton's increments (rotate_directors): exact on a rigid turn, additive on a stretch, and equal
+// to g + d to first order.
+#include <array>
+#include <cmath>
 #include <numbers>
 
 #include <gtest/gtest.h>
@@ -74,6 +78,57 @@ TEST(RotationVector, LogarithmCountsTurnsAboutTheAxis) {
   // Without a hint beyond half a turn, the principal value.
   const Vec3 theta = 1.0 * Vec3(0.0, 0.0, 1.0);
   EXPECT_LT((rotation_vector(rotation_matrix(theta), Vec3::Zero()) - theta).norm(), 1e-14);
+}
+
+/// Directors that are neither unit nor orthogonal (a deformed section): 1.1 and 0.9 long, 80 degrees apart.
+std::array<Vec3, 2> deformed_section() {
+  const Vec3 g1 = 1.1 * Vec3(0.2, 1.0, -0.3).normalized();
+  const Vec3 n = g1.cross(Vec3(0.4, 0.1, 1.0)).normalized();
+  const Vec3 g2 = 0.9 * (std::cos(80.0 * std::numbers::pi / 180.0) * g1.normalized() +
+                         std::sin(80.0 * std::numbers::pi / 180.0) * n.cross(g1.normalized()));
+  return {g1, g2};
+}
+
+TEST(DirectorUpdate, TurnsALinearisedRotationExactly) {
+  const auto [g1, g2] = deformed_section();
+  for (const Vec3& omega : {Vec3(1e-3, 0.0, -2e-3), Vec3(0.1, -0.05, 0.2), Vec3(0.9, 0.4, -1.2)}) {
+    const auto [n1, n2] = rotate_directors(g1, g2, omega.cross(g1), omega.cross(g2));
+    const Mat3 q = angle_axis(omega);
+    EXPECT_LT((n1 - q * g1).norm(), 1e-14) << omega.transpose();
+    EXPECT_LT((n2 - q * g2).norm(), 1e-14) << omega.transpose();
+    // The additive update stretches the section by |omega|^2 / 2; this one keeps lengths and angle.
+    EXPECT_NEAR(n1.norm(), g1.norm(), 1e-14);
+    EXPECT_NEAR(n1.dot(n2), g1.dot(g2), 1e-14);
+  }
+}
+
+TEST(DirectorUpdate, AddsAnIncrementThatDoesNotTurnTheSection) {
+  // A uniform stretch of the section: g_i x d_i = 0, no rotation.
+  const auto [g1, g2] = deformed_section();
+  const auto [n1, n2] = rotate_directors(g1, g2, 0.05 * g1, 0.05 * g2);
+  EXPECT_LT((n1 - 1.05 * g1).norm(), 1e-15);
+  EXPECT_LT((n2 - 1.05 * g2).norm(), 1e-15);
+}
+
+TEST(DirectorUpdate, EqualsTheSumToFirstOrder) {
+  // |update(g, e d) - (g + e d)| = O(e^2): halving e divides it by 4.
+  const auto [g1, g2] = deformed_section();
+  const Vec3 d1(0.3, -0.7, 0.2), d2(-0.4, 0.1, 0.9);
+  auto gap = [&](double e) {
+    const auto [n1, n2] = rotate_directors(g1, g2, e * d1, e * d2);
+    return std::hypot((n1 - g1 - e * d1).norm(), (n2 - g2 - e * d2).norm());
+  };
+  for (const double e : {1e-2, 1e-3}) {
+    ASSERT_GT(gap(e), 0.0);
+    EXPECT_NEAR(gap(e) / gap(e / 2), 4.0, 0.05) << e;
+  }
+}
+
+TEST(DirectorUpdate, DegenerateDirectorsAreAdded) {
+  const Vec3 g(1.0, 0.0, 0.0), d1(0.0, 0.1, 0.0), d2(0.0, 0.0, 0.1);
+  const auto [n1, n2] = rotate_directors(g, 2.0 * g, d1, d2);
+  EXPECT_EQ(n1, g + d1);
+  EXPECT_EQ(n2, 2.0 * g + d2);
 }
 
 }  // namespace

@@ -213,6 +213,7 @@ solver:
   max_cutbacks: 0
   easy_iterations: 2
   line_search: false
+  director_update: additive
   gauss_points: 3
   fold_stiffness: 0.5
 output:
@@ -353,6 +354,7 @@ TEST(ScenarioReader, FullScenarioResolves) {
   EXPECT_EQ(s.solver.max_cutbacks, 0);
   EXPECT_EQ(s.solver.easy_iterations, 2);
   EXPECT_FALSE(s.solver.line_search);
+  EXPECT_EQ(s.solver.director_update, DirectorUpdateKind::additive);
   EXPECT_EQ(s.solver.gauss_points, 3);
   EXPECT_EQ(s.solver.fold_stiffness, 0.5);
   EXPECT_EQ(s.output.vtk_every, 0);
@@ -762,6 +764,7 @@ void expect_same(const Scenario& a, const Scenario& b) {
   EXPECT_EQ(a.solver.max_cutbacks, b.solver.max_cutbacks);
   EXPECT_EQ(a.solver.easy_iterations, b.solver.easy_iterations);
   EXPECT_EQ(a.solver.line_search, b.solver.line_search);
+  EXPECT_EQ(a.solver.director_update, b.solver.director_update);
   EXPECT_EQ(a.solver.gauss_points, b.solver.gauss_points);
   EXPECT_EQ(a.solver.fold_stiffness, b.solver.fold_stiffness);
   EXPECT_EQ(a.output.vtk_every, b.output.vtk_every);

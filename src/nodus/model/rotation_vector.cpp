@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include <Eigen/Cholesky>
 #include <Eigen/Geometry>
 
 namespace nodus::model {
@@ -107,6 +108,16 @@ Vec3 rotation_vector(const Mat3& q, const Vec3& near) {
   const double along = near.dot(axis);
   const double turns = std::round((along - angle) / (2.0 * std::numbers::pi));
   return axis * (angle + 2.0 * std::numbers::pi * turns);
+}
+
+std::array<Vec3, 2> rotate_directors(const Vec3& g1, const Vec3& g2, const Vec3& d1, const Vec3& d2) {
+  const Mat3 a =
+      (g1.squaredNorm() + g2.squaredNorm()) * Mat3::Identity() - g1 * g1.transpose() - g2 * g2.transpose();
+  const Eigen::LLT<Mat3> factor(a);
+  const Vec3 omega = factor.solve(g1.cross(d1) + g2.cross(d2));
+  if (factor.info() != Eigen::Success || !omega.allFinite()) return {g1 + d1, g2 + d2};
+  const Mat3 q = rotation_matrix(omega);
+  return {q * g1 + (d1 - omega.cross(g1)), q * g2 + (d2 - omega.cross(g2))};
 }
 
 }  // namespace nodus::model

@@ -39,4 +39,14 @@ RotationDerivatives rotation_derivatives(const Eigen::Vector3d& theta, bool seco
 /// `near`: composing rotations about one axis keeps counting turns.
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& q, const Eigen::Vector3d& near);
 
+/// The section directors reached from (g1, g2) by the increments (d1, d2) of a Newton step. The part of the
+/// increments that is a linearised rotation, omega x g_i with omega fitted in least squares
+/// (sum_i (|g_i|^2 I - g_i g_i^T) omega = sum_i g_i x d_i), is applied as the finite rotation Q(omega); the
+/// rest is added: g_i' = Q(omega) g_i + (d_i - omega x g_i). To first order in d this is g_i + d_i, so Newton
+/// keeps its rate; for a rigid turn it keeps the directors' lengths and angle, which g_i + d_i would stretch
+/// by |omega|^2 / 2 (docs/model.md, "Director update"). Degenerate directors (parallel or zero) are
+/// returned as g_i + d_i.
+std::array<Eigen::Vector3d, 2> rotate_directors(const Eigen::Vector3d& g1, const Eigen::Vector3d& g2,
+                                                const Eigen::Vector3d& d1, const Eigen::Vector3d& d2);
+
 }  // namespace nodus::model

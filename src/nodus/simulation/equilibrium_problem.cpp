@@ -1,20 +1,23 @@
 #include "nodus/simulation/equilibrium_problem.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <stdexcept>
 #include <string>
 
 #include "nodus/loading/load_term.hpp"
 #include "nodus/model/internal_forces_term.hpp"
+#include "nodus/model/rotation_vector.hpp"
 
 namespace nodus::simulation {
 
 EquilibriumProblem::EquilibriumProblem(const model::Model& model, loading::Conditions& conditions,
-                                       Tolerances tolerances)
+                                       Tolerances tolerances, DirectorUpdate director_update)
     : model_(model),
       conditions_(conditions),
       tolerances_(tolerances),
+      director_update_(director_update),
       x_(model.reference()),
       x_committed_(x_) {
   terms_.push_back(std::make_unique<model::InternalForcesTerm>(model_));
@@ -98,6 +101,33 @@ Eigen::VectorXd EquilibriumProblem::unknowns() const {
   Eigen::VectorXd u(size());
   for (int i = 0; i < size(); ++i) u[i] = x_[free_dofs_[static_cast<std::size_t>(i)]];
   return u;
+}
+
+Eigen::VectorXd EquilibriumProblem::step(const Eigen::VectorXd& u, const Eigen::VectorXd& du) const {
+  Eigen::VectorXd next = u + du;
+  if (director_update_ == DirectorUpdate::additive) return next;
+  for (int node = 0; node < model_.num_nodes(); ++node) {
+    // The free indices of g1 and g2 (unknowns 3 to 8 of the node's block); a node with any of them
+    // prescribed keeps the additive update.
+    const int first = model_.node_dof(node) + 3;
+    std::array<int, 6> at{};
+    bool free = true;
+    for (std::size_t k = 0; k < at.size(); ++k) {
+      at[k] = free_index_[static_cast<std::size_t>(first) + k];
+      free = free && at[k] >= 0;
+    }
+    if (!free) continue;
+    const auto vec = [&at](const Eigen::VectorXd& v, std::size_t from) {
+      return Eigen::Vector3d(v[at[from]], v[at[from + 1]], v[at[from + 2]]);
+    };
+    const std::array<Eigen::Vector3d, 2> g =
+        model::rotate_directors(vec(u, 0), vec(u, 3), vec(du, 0), vec(du, 3));
+    for (std::size_t k = 0; k < 3; ++k) {
+      next[at[k]] = g[0][static_cast<int>(k)];
+      next[at[3 + k]] = g[1][static_cast<int>(k)];
+    }
+  }
+  return next;
 }
 
 void EquilibriumProblem::set_unknowns(const Eigen::VectorXd& u) {

@@ -25,6 +25,12 @@ struct Tolerances {
   double increment = 1e-6;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
 };
 
+/// How a Newton increment moves the section directors of the beams' nodes (EquilibriumProblem::step).
+enum class DirectorUpdate {
+  rotation,  ///< the rigid-turn part of the increments as a finite rotation (model::rotate_directors)
+  additive,  ///< g_i + d_i
+};
+
 using ContactState = contact::ContactState;
 
 /// What the problem carries from one load step to the next (at a committed state): the unknowns and load
@@ -44,7 +50,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
  public:
   /// The problem of a beam assembly: the terms of beam internal forces, loads, contact-friction (no elements
   /// yet) and viscous drag (none yet), in that order. `model` and `conditions` outlive the problem.
-  EquilibriumProblem(const model::Model& model, loading::Conditions& conditions, Tolerances tolerances);
+  EquilibriumProblem(const model::Model& model, loading::Conditions& conditions, Tolerances tolerances,
+                     DirectorUpdate director_update = DirectorUpdate::rotation);
 
   /// Registers one more term (after the built-in ones) and rebuilds the sparse pattern; returns it.
   model::Term& add_term(std::unique_ptr<model::Term> term);
@@ -60,6 +67,9 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   int size() const override { return static_cast<int>(free_dofs_.size()); }
   Eigen::VectorXd unknowns() const override;
   void set_unknowns(const Eigen::VectorXd& u) override;
+  /// u + du, except at the beam nodes whose six director unknowns are all free, where the directors turn by
+  /// the rigid part of their increments (DirectorUpdate::rotation, the default).
+  Eigen::VectorXd step(const Eigen::VectorXd& u, const Eigen::VectorXd& du) const override;
   void evaluate(Eigen::VectorXd& residual, bool with_tangent) override;
   const solver::SparseMatrix& tangent() const override { return assembler_->matrix(); }
   double residual_tolerance() const override { return residual_tolerance_; }
@@ -117,6 +127,7 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   const model::Model& model_;
   loading::Conditions& conditions_;
   Tolerances tolerances_;
+  DirectorUpdate director_update_;
   std::vector<std::unique_ptr<model::Term>> terms_;
   contact::ContactTerm* contact_ = nullptr;  ///< owned by terms_
   DragTerm* drag_ = nullptr;                 ///< owned by terms_

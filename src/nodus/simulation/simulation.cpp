@@ -215,7 +215,9 @@ Simulation::Simulation(scenario::Scenario scenario)
       conditions_.activate(c, 0.0, model_.reference());
   problem_ = std::make_unique<EquilibriumProblem>(
       model_, conditions_,
-      Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance});
+      Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance},
+      scenario_.solver.director_update == scenario::DirectorUpdateKind::additive ? DirectorUpdate::additive
+                                                                                 : DirectorUpdate::rotation);
   if (!model_.bodies().empty()) {
     std::vector<double> penalties, ties;
     for (const scenario::BodySpec& b : scenario_.bodies) {

@@ -129,7 +129,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     Eigen::VectorXd trial_residual;
     {
       const Stopwatch watch(timings_.evaluation);
-      problem.set_unknowns(u + du);
+      problem.set_unknowns(problem.step(u, du));
       // Without a line search the full step is taken: its tangent is assembled with its residual, in one
       // pass over the terms instead of two.
       problem.evaluate(trial_residual, !settings_.line_search);
@@ -154,7 +154,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
           else  // regula falsi inside the bracket, kept away from its ends
             alpha =
                 std::clamp(lo - s_lo * (hi - lo) / (s_hi - s_lo), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
-          problem.set_unknowns(u + alpha * du);
+          problem.set_unknowns(problem.step(u, alpha * du));
           problem.evaluate(trial_residual, false);
           s_alpha = du.dot(trial_residual);
         }
@@ -165,7 +165,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
       report.iterations = it;
       return report;
     }
-    u += alpha * du;
+    u = problem.step(u, alpha * du);
     increment = alpha * problem.scaled_increment(du);
     residual = trial_residual;
     norm = residual.norm();

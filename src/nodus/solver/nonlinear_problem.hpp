@@ -16,6 +16,9 @@ class NonlinearProblem {
   /// The current free unknowns.
   virtual Eigen::VectorXd unknowns() const = 0;
   virtual void set_unknowns(const Eigen::VectorXd& u) = 0;
+  /// The unknowns reached from `u` by the Newton increment `du`: u + du, or a better update of the problem's
+  /// own that equals it to first order in du (a finite rotation of the beams' section directors).
+  virtual Eigen::VectorXd step(const Eigen::VectorXd& u, const Eigen::VectorXd& du) const { return u + du; }
   /// Residual (out-of-balance force) at the current unknowns, and the tangent d residual / d u if asked.
   virtual void evaluate(Eigen::VectorXd& residual, bool with_tangent) = 0;
   /// The tangent of the last evaluate(..., true). Its pattern stays the same between calls unless
