@@ -354,7 +354,7 @@ TEST(ScenarioReader, FullScenarioResolves) {
   EXPECT_EQ(s.solver.max_cutbacks, 0);
   EXPECT_EQ(s.solver.easy_iterations, 2);
   EXPECT_FALSE(s.solver.line_search);
-  EXPECT_EQ(s.solver.director_update, DirectorUpdateKind::additive);
+  EXPECT_EQ(s.solver.director_update, model::DirectorUpdate::additive);
   EXPECT_EQ(s.solver.gauss_points, 3);
   EXPECT_EQ(s.solver.fold_stiffness, 0.5);
   EXPECT_EQ(s.output.vtk_every, 0);

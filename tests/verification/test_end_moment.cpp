@@ -15,7 +15,7 @@ namespace nodus::verification {
 namespace {
 
 Eigen::Vector3d tip_under_moment(const BeamCase& c, double moment, int steps,
-                                 scenario::DirectorUpdateKind update = scenario::DirectorUpdateKind::rotation,
+                                 model::DirectorUpdate update = model::DirectorUpdate::rotation,
                                  int* iterations = nullptr) {
   scenario::Scenario s = single_beam(c);
   s.solver.director_update = update;
@@ -66,9 +66,8 @@ TEST(EndMoment, BothDirectorUpdatesBendTheSameHalfCircle) {
   const Eigen::Vector3d expected(0, 2 * c.length / std::numbers::pi, 0);
   int turned = 0, added = 0;
   const Eigen::Vector3d tip_turned =
-      tip_under_moment(c, moment, 10, scenario::DirectorUpdateKind::rotation, &turned);
-  const Eigen::Vector3d tip_added =
-      tip_under_moment(c, moment, 10, scenario::DirectorUpdateKind::additive, &added);
+      tip_under_moment(c, moment, 10, model::DirectorUpdate::rotation, &turned);
+  const Eigen::Vector3d tip_added = tip_under_moment(c, moment, 10, model::DirectorUpdate::additive, &added);
   std::printf("half circle: %d Newton iterations with the rotation update, %d additive; tips %.3e L apart\n",
               turned, added, (tip_turned - tip_added).norm() / c.length);
   EXPECT_LT((tip_turned - expected).norm(), 1e-3 * c.length);

@@ -39,6 +39,13 @@ RotationDerivatives rotation_derivatives(const Eigen::Vector3d& theta, bool seco
 /// `near`: composing rotations about one axis keeps counting turns.
 Eigen::Vector3d rotation_vector(const Eigen::Matrix3d& q, const Eigen::Vector3d& near);
 
+/// How a Newton increment moves the section directors of the beams' nodes
+/// (simulation::EquilibriumProblem::step, the scenario's solver.director_update).
+enum class DirectorUpdate {
+  rotation,  ///< the rigid-turn part of the increments as a finite rotation (rotate_directors)
+  additive,  ///< g_i + d_i
+};
+
 /// The section directors reached from (g1, g2) by the increments (d1, d2) of a Newton step. The part of the
 /// increments that is a linearised rotation, omega x g_i with omega fitted in least squares
 /// (sum_i (|g_i|^2 I - g_i g_i^T) omega = sum_i g_i x d_i), is applied as the finite rotation Q(omega); the

@@ -13,6 +13,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/model/rotation_vector.hpp"
 #include "nodus/model/yarn_layout.hpp"
 #include "nodus/scenario/key.hpp"
 #include "nodus/solver/load_stepping.hpp"
@@ -446,9 +447,6 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
 
 enum class LinearSolverKind { cholmod, umfpack, mumps };
 
-/// How Newton's increments move the section directors (simulation::DirectorUpdate).
-enum class DirectorUpdateKind { rotation, additive };
-
 /// The `solver` section. The Newton and stepping defaults are the library's (solver::NewtonSettings,
 /// solver::StepControl); the others equal those of the library structs that take them, which a test checks
 /// (tests/scenario/test_scenario_keys.cpp).
@@ -464,7 +462,7 @@ struct SolverSettings {
   /// Damp the Newton updates by a line search: slower on every verification case so far (docs/model.md).
   bool line_search = ::nodus::solver::NewtonSettings{}.line_search;
   /// Turn the directors by the rigid part of their Newton increments, or add the increments.
-  DirectorUpdateKind director_update = DirectorUpdateKind::rotation;
+  ::nodus::model::DirectorUpdate director_update = ::nodus::model::DirectorUpdate::rotation;
   /// Keep the tangent's factor across iterations and steps, solving with GMRES on it (NewtonSettings).
   bool reuse_factor = ::nodus::solver::NewtonSettings{}.reuse_factor;
   int krylov_iterations = ::nodus::solver::NewtonSettings{}.krylov_iterations;  ///< >= 1
@@ -501,7 +499,9 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
       K::choice(
           "solver.director_update", "rotation | additive",
           [](const SolverSettings& c) { return static_cast<int>(c.director_update); },
-          [](SolverSettings& c, int i) { c.director_update = static_cast<DirectorUpdateKind>(i); },
+          [](SolverSettings& c, int i) {
+            c.director_update = static_cast<::nodus::model::DirectorUpdate>(i);
+          },
           "how a Newton increment moves the section directors: rotation (the part of the increment that "
           "is a rigid turn applied as a finite rotation, so that a turn does not stretch the section) or "
           "additive (g + dg) (docs/model.md)"),

@@ -13,6 +13,7 @@
 #include "nodus/contact/contact_term.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
+#include "nodus/model/rotation_vector.hpp"
 #include "nodus/model/term.hpp"
 #include "nodus/simulation/drag_term.hpp"
 #include "nodus/solver/load_stepping.hpp"
@@ -25,11 +26,7 @@ struct Tolerances {
   double increment = 1e-6;  ///< max |du_i| / scale_i <= increment (positions scaled by the model size)
 };
 
-/// How a Newton increment moves the section directors of the beams' nodes (EquilibriumProblem::step).
-enum class DirectorUpdate {
-  rotation,  ///< the rigid-turn part of the increments as a finite rotation (model::rotate_directors)
-  additive,  ///< g_i + d_i
-};
+using DirectorUpdate = model::DirectorUpdate;
 
 using ContactState = contact::ContactState;
 

@@ -216,8 +216,7 @@ Simulation::Simulation(scenario::Scenario scenario)
   problem_ = std::make_unique<EquilibriumProblem>(
       model_, conditions_,
       Tolerances{scenario_.solver.residual_tolerance, scenario_.solver.increment_tolerance},
-      scenario_.solver.director_update == scenario::DirectorUpdateKind::additive ? DirectorUpdate::additive
-                                                                                 : DirectorUpdate::rotation);
+      scenario_.solver.director_update);
   if (!model_.bodies().empty()) {
     std::vector<double> penalties, ties;
     for (const scenario::BodySpec& b : scenario_.bodies) {

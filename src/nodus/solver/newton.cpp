@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -127,9 +128,10 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     // most `slope_ratio` |s(0)|, or when du is not a descent direction (indefinite tangent).
     double alpha = 1.0;
     Eigen::VectorXd trial_residual;
+    Eigen::VectorXd next = problem.step(u, du);  // the unknowns at alpha, as last set
     {
       const Stopwatch watch(timings_.evaluation);
-      problem.set_unknowns(problem.step(u, du));
+      problem.set_unknowns(next);
       // Without a line search the full step is taken: its tangent is assembled with its residual, in one
       // pass over the terms instead of two.
       problem.evaluate(trial_residual, !settings_.line_search);
@@ -154,7 +156,8 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
           else  // regula falsi inside the bracket, kept away from its ends
             alpha =
                 std::clamp(lo - s_lo * (hi - lo) / (s_hi - s_lo), lo + 0.1 * (hi - lo), hi - 0.1 * (hi - lo));
-          problem.set_unknowns(problem.step(u, alpha * du));
+          next = problem.step(u, alpha * du);
+          problem.set_unknowns(next);
           problem.evaluate(trial_residual, false);
           s_alpha = du.dot(trial_residual);
         }
@@ -165,7 +168,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
       report.iterations = it;
       return report;
     }
-    u = problem.step(u, alpha * du);
+    u = std::move(next);
     increment = alpha * problem.scaled_increment(du);
     residual = trial_residual;
     norm = residual.norm();
