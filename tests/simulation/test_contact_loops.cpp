@@ -151,3 +151,70 @@ TEST(ContactLoops, LoopTwoAtItsCapIsFlaggedAndWarnedOncePerStage) {
 
 }  // namespace
 }  // namespace nodus::simulation
+
+// Loop 2's judgement per proximity zone (worst_zone_imbalance): the out-of-balance force on the free unknowns
+// of a zone's beam elements over the zone's normal force, the worst zone. Beam element e has nodes 2e, 2e + 1
+// and 2e + 2 here (one beam); the figures are worked by hand.
+namespace nodus::simulation {
+namespace {
+
+contact::ContactElement element(int zone, int element_i, int element_j) {
+  contact::ContactElement e;
+  e.zone = zone;
+  e.particle_i.element = element_i;
+  e.particle_j.element = element_j;
+  return e;
+}
+
+ContactState pressing(double normal_reaction) {
+  ContactState s;
+  s.normal_reaction = normal_reaction;
+  return s;
+}
+
+const auto first_node = [](int element) { return 2 * element; };
+const auto nothing_prescribed = [](int) { return false; };
+
+TEST(ZoneImbalance, AZoneFarFromBalanceIsNotHiddenByTheTotalForce) {
+  // Zone 0 carries 10 N between elements 0 and 1 (nodes 0-3), zone 1 0.01 N between elements 5 and 6 (nodes
+  // 10-14). A force of 1e-3 N out of balance at node 11 is 1e-4 of the total normal force, which the global
+  // criterion (1e-3) accepts, but 0.1 of zone 1's.
+  const std::vector<contact::ContactElement> elements = {element(0, 0, 1), element(0, 0, 1),
+                                                         element(1, 5, 6)};
+  const std::vector<ContactState> states = {pressing(4.0), pressing(6.0), pressing(0.01)};
+  Eigen::VectorXd residual = Eigen::VectorXd::Zero(9 * 20);
+  residual[9 * 11 + 4] = 1e-3;
+  EXPECT_NEAR(worst_zone_imbalance(elements, states, first_node, residual, nothing_prescribed), 0.1, 1e-15);
+  // The same force in zone 0's unknowns: 1e-3 / 10.
+  residual.setZero();
+  residual[9 * 2] = 1e-3;
+  EXPECT_NEAR(worst_zone_imbalance(elements, states, first_node, residual, nothing_prescribed), 1e-4, 1e-18);
+}
+
+TEST(ZoneImbalance, SharedNodesCountOnceAndPrescribedUnknownsNotAtAll) {
+  // Two elements of one zone on the same beam elements: node 2 (shared by beam elements 0 and 1) counts once.
+  // Forces 3 and 4 N at its unknowns give 5 N over the zone's 2 N; a reaction of 100 N at a prescribed
+  // unknown of node 0 is left out.
+  const std::vector<contact::ContactElement> elements = {element(0, 0, 1), element(0, 1, 0)};
+  const std::vector<ContactState> states = {pressing(1.0), pressing(1.0)};
+  Eigen::VectorXd residual = Eigen::VectorXd::Zero(9 * 5);
+  residual[9 * 2 + 1] = 3.0;
+  residual[9 * 2 + 7] = 4.0;
+  residual[0] = 100.0;
+  const auto node_zero_held = [](int dof) { return dof < 9; };
+  EXPECT_NEAR(worst_zone_imbalance(elements, states, first_node, residual, node_zero_held), 2.5, 1e-15);
+}
+
+TEST(ZoneImbalance, ZonesThatDoNotPressAreLeftToTheGlobalCriterion) {
+  // Zone 1 presses with no force (a zone just detected): its out-of-balance force is not divided by zero.
+  const std::vector<contact::ContactElement> elements = {element(0, 0, 1), element(1, 4, 5)};
+  const std::vector<ContactState> states = {pressing(2.0), pressing(0.0)};
+  Eigen::VectorXd residual = Eigen::VectorXd::Zero(9 * 12);
+  residual[9 * 9] = 1.0;  // zone 1's node 9
+  residual[9 * 1] = 0.5;  // zone 0's node 1
+  EXPECT_NEAR(worst_zone_imbalance(elements, states, first_node, residual, nothing_prescribed), 0.25, 1e-15);
+  EXPECT_EQ(worst_zone_imbalance({}, {}, first_node, residual, nothing_prescribed), 0.0);
+}
+
+}  // namespace
+}  // namespace nodus::simulation

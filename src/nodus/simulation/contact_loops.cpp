@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/beam/beam_element.hpp"
 #include "nodus/contact/history_transfer.hpp"
 
 namespace nodus::simulation {
@@ -50,6 +51,34 @@ bool add_solve(solver::NewtonReport& total, const solver::NewtonReport& r) {
 }
 
 }  // namespace
+
+double worst_zone_imbalance(const std::vector<contact::ContactElement>& elements,
+                            const std::vector<ContactState>& states,
+                            const std::function<int(int)>& first_node, const Eigen::VectorXd& residual,
+                            const std::function<bool(int)>& prescribed) {
+  int num_zones = 0;
+  for (const contact::ContactElement& e : elements) num_zones = std::max(num_zones, e.zone + 1);
+  std::vector<double> force(static_cast<std::size_t>(num_zones), 0.0);
+  std::vector<std::vector<int>> nodes(static_cast<std::size_t>(num_zones));
+  for (std::size_t e = 0; e < elements.size() && e < states.size(); ++e) {
+    const auto z = static_cast<std::size_t>(elements[e].zone);
+    force[z] += states[e].normal_reaction;
+    for (const int element : {elements[e].particle_i.element, elements[e].particle_j.element})
+      for (int k = 0; k < beam::kElementNodes; ++k) nodes[z].push_back(first_node(element) + k);
+  }
+  double worst = 0.0;
+  for (std::size_t z = 0; z < nodes.size(); ++z) {
+    if (!(force[z] > 0.0)) continue;
+    std::sort(nodes[z].begin(), nodes[z].end());
+    nodes[z].erase(std::unique(nodes[z].begin(), nodes[z].end()), nodes[z].end());
+    double sum = 0.0;
+    for (const int node : nodes[z])
+      for (int d = beam::kNodeDofs * node; d < beam::kNodeDofs * (node + 1); ++d)
+        if (!prescribed(d)) sum += residual[d] * residual[d];
+    worst = std::max(worst, std::sqrt(sum) / force[z]);
+  }
+  return worst;
+}
 
 ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& problem,
                            solver::NewtonSolver& newton, contact::DetectionParameters detection,
@@ -252,11 +281,17 @@ solver::NewtonReport ContactLoops::solve() {
     Eigen::VectorXd residual;
     problem_.evaluate(residual, false);
     if (residual.norm() <= problem_.residual_tolerance()) break;
-    settled = residual.norm() <= kSetTolerance * total_normal_force(problem_.contact_states());
+    const double zone_imbalance = worst_zone_imbalance(
+        problem_.contact_geometry().elements, problem_.contact_states(),
+        [this](int element) { return model_.element_first_node(element); }, problem_.full_residual(),
+        [this](int dof) { return problem_.prescribed(dof); });
+    settled = residual.norm() <= kSetTolerance * total_normal_force(problem_.contact_states()) &&
+              zone_imbalance <= kSetTolerance;
     spdlog::debug(
         "contact loop 2: |R| = {:.3e} with the new contact elements (tolerance {:.1e}; {:.1e} of "
-        "the normal force: {})",
-        residual.norm(), problem_.residual_tolerance(), kSetTolerance, settled ? "settled" : "not settled");
+        "the normal force, overall and in every zone, the worst zone at {:.1e}: {})",
+        residual.norm(), problem_.residual_tolerance(), kSetTolerance, zone_imbalance,
+        settled ? "settled" : "not settled");
   }
   collect_stats();  // Newton's last evaluation was at the converged state, with these contact elements
   // A state that converged with a penetration far beyond p_max is not a contact state: loop 3 stopped before

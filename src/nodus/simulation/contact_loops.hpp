@@ -8,6 +8,7 @@
 /// Between detections the reversible tangential displacements and the penalty coefficients are carried from
 /// the old contact elements and zones to the new ones (Sect. 5.2.3).
 
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -61,6 +62,17 @@ struct ContactStepStats {
   /// Both loops ended by their criteria, not at their caps.
   bool loops_converged() const { return !detections_capped && !normals_capped; }
 };
+
+/// Loop 2 judges a new set of contact elements per proximity zone as well as globally: one global number can
+/// hide a zone far from balance among thousands. Returns the largest, over the zones whose elements press, of
+/// the out-of-balance force on the free unknowns of the zone's beam elements over the zone's normal force (0
+/// if no zone presses). Zones that share beam elements share those unknowns; an unknown counts once per zone.
+/// `first_node(e)` is the first node of beam element e (its three nodes are consecutive, nine unknowns each,
+/// beam nodes first), `residual` covers all unknowns and `prescribed(dof)` says which it leaves out.
+double worst_zone_imbalance(const std::vector<contact::ContactElement>& elements,
+                            const std::vector<ContactState>& states,
+                            const std::function<int(int)>& first_node, const Eigen::VectorXd& residual,
+                            const std::function<bool(int)>& prescribed);
 
 class ContactLoops {
  public:

@@ -97,6 +97,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   void restore_state(ProblemState state);
   /// f_int - f_ext over all unknowns at the last evaluation (reactions at the prescribed ones).
   const Eigen::VectorXd& full_residual() const { return residual_full_; }
+  /// Whether unknown `dof` is prescribed (by a condition) at the moment.
+  bool prescribed(int dof) const { return prescribed_[static_cast<std::size_t>(dof)]; }
 
   // Contact (Sect. 5): the contact elements, their normals and particles fixed during Newton.
   contact::ContactTerm& contact() { return *contact_; }
