@@ -7,6 +7,10 @@
 //                             tangent
 //   BM_ContactFactorizeSolve  factorisation and solve by each sparse direct solver (analysis once, outside
 //                             the loop)
+//   BM_ContactInstall         EquilibriumProblem::set_contact after a detection: /0 the same beam elements in
+//                             contact (the pattern is kept: its blocks' adjacency compared), /1 one zone's
+//                             elements more or fewer than the last time (a new pattern is built); the
+//                             counter analyze_ms is the CHOLMOD analysis a new pattern also costs
 // The state is not updated, so every iteration does the same work. Argument: number of fibres (100 elements
 // each). Results and commands: docs/performance.md.
 
@@ -111,6 +115,37 @@ void BM_ContactFactorizeSolve(benchmark::State& state) {
   state.SetLabel(linear->name());
 }
 
+void BM_ContactInstall(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  const bool change = state.range(1) != 0;
+  // The last zone's elements left out (a pair of fibres no longer in contact; the zone's own count is not
+  // read by set_contact).
+  nodus::contact::ContactGeometry fewer = s.geometry;
+  const int last_zone = static_cast<int>(s.geometry.zones.size()) - 1;
+  std::erase_if(fewer.elements, [&](const nodus::contact::ContactElement& e) { return e.zone == last_zone; });
+  const std::size_t zones = s.geometry.zones.size();
+  bool full = true;
+  int rebuilt = 0;
+  for (auto _ : state) {
+    const nodus::contact::ContactGeometry& g = change && full ? fewer : s.geometry;
+    full = !full;
+    rebuilt +=
+        s.problem->set_contact(g, std::vector<double>(zones, 400.0),
+                               std::vector<Eigen::Vector3d>(g.elements.size(), Eigen::Vector3d::Zero()))
+            ? 1
+            : 0;
+    benchmark::DoNotOptimize(s.problem->tangent().valuePtr());
+  }
+  if (change != (rebuilt > 0)) state.SkipWithError("the pattern was not rebuilt as the case says");
+  auto linear = nodus::solver::make_linear_solver(nodus::solver::LinearSolverKind::cholmod);
+  const auto start = std::chrono::steady_clock::now();
+  linear->analyze(s.problem->tangent());
+  state.counters["analyze_ms"] =
+      std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+  state.counters["nnz"] = static_cast<double>(s.problem->tangent().nonZeros());
+  set_counters(state, s);
+}
+
 void sizes(benchmark::internal::Benchmark* b) {
   b->Arg(7)->Arg(27)->Arg(75)->Unit(benchmark::kMillisecond);
 }
@@ -134,3 +169,7 @@ void sizes_and_solvers(benchmark::internal::Benchmark* b) {
 BENCHMARK(BM_ContactDetection)->Apply(sizes);
 BENCHMARK(BM_ContactAssembly)->Apply(sizes);
 BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes_and_solvers);
+BENCHMARK(BM_ContactInstall)
+    ->ArgsProduct({{7, 27, 75}, {0, 1}})
+    ->ArgNames({"fibres", "new_pattern"})
+    ->Unit(benchmark::kMillisecond);

@@ -176,6 +176,7 @@ TEST(Summary, JsonHoldsEveryField) {
   d.assembly_seconds = 0.5;
   d.linear_solve_seconds = 0.125;
   d.factorizations = 170;
+  d.analyses = 12;
   d.krylov_iterations = 9;
   d.failure = "stage \"bend\": no convergence";
   d.final_time = 0.75;
@@ -197,11 +198,12 @@ TEST(Summary, JsonHoldsEveryField) {
   EXPECT_EQ(j.at("assembly_seconds"), 0.5);
   EXPECT_EQ(j.at("linear_solve_seconds"), 0.125);
   EXPECT_EQ(j.at("factorizations"), 170);
+  EXPECT_EQ(j.at("analyses"), 12);
   EXPECT_EQ(j.at("krylov_iterations"), 9);
   EXPECT_EQ(j.at("failure"), d.failure);
   EXPECT_EQ(j.at("final_time"), 0.75);
   EXPECT_EQ(j.at("scenario"), d.scenario);
-  EXPECT_EQ(j.size(), 16u);
+  EXPECT_EQ(j.size(), 17u);
   EXPECT_FALSE(j.contains("friction"));  // without contact forces
   d.friction = 0.25;
   EXPECT_EQ(nlohmann::json::parse(summary_json(d)).at("friction"), 0.25);

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <numbers>
 #include <optional>
 #include <random>
@@ -276,6 +277,60 @@ TEST(AssembledProblem, RestoreGoesBackToTheCommittedContactElementsAndPenalties)
   Eigen::VectorXd restored;
   a.problem->evaluate(restored, true);
   EXPECT_EQ(restored, committed_residual);
+}
+
+TEST(AssembledProblem, APatternIsBuiltOnlyWhenTheCouplingsChange) {
+  // A detection that finds contact elements between the same beam elements keeps the pattern (and the
+  // solver's analysis of it); one that couples other elements, and the restore of a failed attempt's
+  // elements, build a new one and say so by the pattern version (NewtonSolver then analyses it again).
+  Assembly a(true, 0.0);
+  EquilibriumProblem& p = *a.problem;
+  const std::size_t zones = a.geometry.zones.size();
+  ASSERT_GE(zones, 2u);
+  const std::uint64_t first = p.pattern_version();
+  const Eigen::Index entries = p.tangent().nonZeros();
+  const solver::SparseMatrix* matrix = &p.tangent();
+
+  // The same elements again, and the same beam elements with other particles and normals: same pattern.
+  EXPECT_FALSE(p.set_contact(a.geometry, std::vector<double>(zones, kPenalty),
+                             std::vector<Vec3>(a.geometry.elements.size(), Vec3::Zero())));
+  contact::ContactGeometry moved = a.geometry;
+  for (contact::ContactElement& e : moved.elements) {
+    e.normal = -e.normal;
+    e.particle_i.local *= 0.5;
+  }
+  EXPECT_FALSE(p.set_contact(moved, std::vector<double>(zones, kPenalty),
+                             std::vector<Vec3>(moved.elements.size(), Vec3::Zero())));
+  EXPECT_EQ(p.pattern_version(), first);
+  EXPECT_EQ(&p.tangent(), matrix);
+
+  // B's zone alone: C's couplings with A leave the pattern.
+  p.commit();
+  contact::ContactGeometry fewer = a.geometry;
+  fewer.zones.resize(1);
+  fewer.elements.resize(static_cast<std::size_t>(fewer.zones[0].num_elements));
+  EXPECT_TRUE(p.set_contact(fewer, {kPenalty}, std::vector<Vec3>(fewer.elements.size(), Vec3::Zero())));
+  EXPECT_EQ(p.pattern_version(), first + 1);
+  EXPECT_LT(p.tangent().nonZeros(), entries);
+
+  // restore() puts the committed elements back, with their pattern: a new version, which the next
+  // detection of the same elements keeps.
+  p.restore();
+  EXPECT_EQ(p.pattern_version(), first + 2);
+  EXPECT_EQ(p.tangent().nonZeros(), entries);
+  EXPECT_FALSE(p.set_contact(a.geometry, std::vector<double>(zones, kPenalty),
+                             std::vector<Vec3>(a.geometry.elements.size(), Vec3::Zero())));
+  EXPECT_EQ(p.pattern_version(), first + 2);
+
+  // The tangent assembled into a kept pattern equals the one assembled into a new pattern.
+  Eigen::VectorXd r;
+  p.set_time(0.5);
+  p.evaluate(r, true);
+  const Eigen::MatrixXd kept(p.tangent());
+  Assembly b(true, 0.0);
+  b.problem->set_time(0.5);
+  b.problem->evaluate(r, true);
+  EXPECT_EQ(kept, Eigen::MatrixXd(b.problem->tangent()));
 }
 
 // With R_N frozen in the friction tangent (the paper's simplification, the default), the tangent is not the

@@ -211,7 +211,7 @@ TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {
   std::string flipped = bytes;
   flipped[flipped.size() / 2] = static_cast<char>(flipped[flipped.size() / 2] ^ 0x10);
   std::string wrong_version = bytes;
-  wrong_version[12] = 3;
+  wrong_version[12] = 4;
   std::string other = kScenario;
   other.replace(other.find("young_modulus: 4000"), 19, "young_modulus: 3000");
   const scenario::Scenario other_scenario = scenario::parse_scenario(other, "other.yaml");
@@ -227,7 +227,7 @@ TEST(Checkpoint, DamagedOrForeignFilesAreRefused) {
       {bytes.substr(0, 5), &s,
        "expected a nodus state file (starting with NODUS-STATE), got a file of another kind"},
       {"not a checkpoint at all", &s, "expected a nodus state file"},
-      {wrong_version, &s, "test.nodus-state: checkpoint: expected format version 2, got version 3"},
+      {wrong_version, &s, "test.nodus-state: checkpoint: expected format version 3, got version 4"},
       {bytes, &other_scenario,
        "test.nodus-state: checkpoint: expected a state of this scenario (fingerprint "},
   };

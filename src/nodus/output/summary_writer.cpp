@@ -24,6 +24,7 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.assembly_seconds = summary.assembly_seconds;
   data.linear_solve_seconds = summary.linear_solve_seconds;
   data.factorizations = summary.factorizations;
+  data.analyses = summary.analyses;
   data.krylov_iterations = summary.krylov_iterations;
   data.failure = summary.failure;
   data.final_time = sim.time();
@@ -46,6 +47,7 @@ std::string summary_json(const SummaryData& data) {
   j["assembly_seconds"] = data.assembly_seconds;
   j["linear_solve_seconds"] = data.linear_solve_seconds;
   j["factorizations"] = data.factorizations;
+  j["analyses"] = data.analyses;
   j["krylov_iterations"] = data.krylov_iterations;
   j["beams"] = data.beams;
   j["nodes"] = data.nodes;
@@ -93,6 +95,7 @@ SummaryData read_summary(const std::filesystem::path& path) {
     data.assembly_seconds = j.value("assembly_seconds", 0.0);
     data.linear_solve_seconds = j.value("linear_solve_seconds", 0.0);
     data.factorizations = j.value("factorizations", 0);
+    data.analyses = j.value("analyses", 0);
     data.krylov_iterations = j.value("krylov_iterations", 0);
     data.beams = j.value("beams", 0);
     data.nodes = j.value("nodes", 0);

@@ -36,6 +36,7 @@ struct SummaryData {
   double assembly_seconds = 0.0;        ///< of which in residual and tangent evaluations inside Newton [s]
   double linear_solve_seconds = 0.0;    ///< of which in sparse analysis, factorisation and solves [s]
   int factorizations = 0;               ///< numerical factorisations of the tangent
+  int analyses = 0;                     ///< symbolic analyses of the tangent's pattern
   int krylov_iterations = 0;            ///< GMRES iterations on lagged factors
   std::string failure;                  ///< why the run stopped early; empty if it did not
   double final_time = 0.0;              ///< load time of the last converged state [s]

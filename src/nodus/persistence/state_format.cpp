@@ -51,7 +51,7 @@ struct ProgressFields {
 struct CountersFields {
   int steps, newton_iterations;
   double wall_seconds, detection_seconds, assembly_seconds, linear_solve_seconds;
-  int factorizations, krylov_iterations;
+  int factorizations, analyses, krylov_iterations;
 };
 struct ProblemFields {
   Eigen::VectorXd x;
@@ -377,6 +377,7 @@ std::string encode_checkpoint(const scenario::Scenario& scenario, const simulati
   e.f64(state.counters.assembly_seconds);
   e.f64(state.counters.linear_solve_seconds);
   e.i32(state.counters.factorizations);
+  e.i32(state.counters.analyses);
   e.i32(state.counters.krylov_iterations);
   // the equilibrium problem
   e.vector(state.problem.x);
@@ -438,6 +439,7 @@ simulation::SimulationState decode_checkpoint(std::string_view bytes, const scen
   state.counters.assembly_seconds = d.f64();
   state.counters.linear_solve_seconds = d.f64();
   state.counters.factorizations = d.i32();
+  state.counters.analyses = d.i32();
   state.counters.krylov_iterations = d.i32();
   state.problem.x = d.vector();
   state.problem.time = d.f64();

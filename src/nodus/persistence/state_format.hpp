@@ -27,7 +27,7 @@
 namespace nodus::persistence {
 
 inline constexpr std::string_view kCheckpointMagic = "NODUS-STATE\n";
-inline constexpr std::uint32_t kCheckpointVersion = 2;
+inline constexpr std::uint32_t kCheckpointVersion = 3;
 /// The extension of checkpoint files.
 inline constexpr std::string_view kCheckpointExtension = ".nodus-state";
 /// The intermediate checkpoint (output.checkpoint_every), replaced each time.

@@ -108,8 +108,8 @@ void ContactLoops::install(contact::ContactGeometry next) {
       contact::transfer_penalties(old, problem_.zone_penalty(), next, laws_.penalty);
   std::vector<Eigen::Vector3d> reversible =
       contact::transfer_reversible(old, problem_.reversible_committed(), next);
+  // Newton analyses the tangent again if the pattern changed (EquilibriumProblem::pattern_version).
   problem_.set_contact(std::move(next), std::move(penalty), std::move(reversible));
-  newton_.reanalyze();
 }
 
 double ContactLoops::update_normals() {
@@ -259,6 +259,11 @@ solver::NewtonReport ContactLoops::solve() {
   stats_ = ContactStepStats{};
   solver::NewtonReport total;
   install(detect());
+  // Every step attempt starts with an analysis of its tangent, even of a pattern analysed before, as a run
+  // resumed at this step does: UMFPACK's and MUMPS's analyses may read the values as well as the pattern, and
+  // a resumed run must repeat the one never stopped. Loop 2's further detections keep the analysis when they
+  // keep the pattern (EquilibriumProblem::pattern_version).
+  newton_.reanalyze();
   stats_.detections = 1;
   bool settled = false;  // the last detection changed the contact forces by less than kSetTolerance
   for (;;) {

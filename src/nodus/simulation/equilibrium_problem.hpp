@@ -52,9 +52,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
 
   /// Registers one more term (after the built-in ones) and rebuilds the sparse pattern; returns it.
   model::Term& add_term(std::unique_ptr<model::Term> term);
-  /// Rebuilds the sparse pattern from the terms' couplings (after a term's couplings changed; the solver must
-  /// re-analyse it).
-  void rebuild_pattern();
+  /// Rebuilds the sparse pattern from the terms' couplings and the free set (after a term's couplings or the
+  /// free set changed). Returns whether the pattern changed: if not, the tangent keeps its matrix and an
+  /// analysis of it still serves (a detection that finds contact elements between the same beam elements).
+  bool rebuild_pattern();
 
   /// Re-reads which unknowns are prescribed (after conditions were activated or released); rebuilds the
   /// sparse pattern.
@@ -69,6 +70,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   Eigen::VectorXd step(const Eigen::VectorXd& u, const Eigen::VectorXd& du) const override;
   void evaluate(Eigen::VectorXd& residual, bool with_tangent) override;
   const solver::SparseMatrix& tangent() const override { return assembler_->matrix(); }
+  /// Counts the patterns built (rebuild_pattern returning true).
+  std::uint64_t pattern_version() const override { return pattern_version_; }
   double residual_tolerance() const override { return residual_tolerance_; }
   /// max |du_i| / scale_i over the free unknowns: positions scaled by the longest beam, directors, rotations
   /// and other unknowns by 1 (model::DofKind).
@@ -103,9 +106,9 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   // Contact (Sect. 5): the contact elements, their normals and particles fixed during Newton.
   contact::ContactTerm& contact() { return *contact_; }
   const contact::ContactTerm& contact() const { return *contact_; }
-  /// Replaces the contact elements (ContactTerm::set_elements) and rebuilds the sparse pattern (the solver
-  /// must re-analyse it).
-  void set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
+  /// Replaces the contact elements (ContactTerm::set_elements) and rebuilds the sparse pattern. Returns
+  /// whether the pattern changed (then the solver must re-analyse it; see rebuild_pattern).
+  bool set_contact(contact::ContactGeometry geometry, std::vector<double> penalty,
                    std::vector<Eigen::Vector3d> reversible);
   /// The laws: p_reg of the normal law, and friction (null: none); see ContactTerm::set_laws.
   void set_contact_laws(double regularization, std::optional<contact::FrictionLaw> friction,
@@ -137,6 +140,7 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   std::vector<int> free_index_;  ///< per unknown: its row among the free ones, or -1
   std::vector<bool> prescribed_;
   std::unique_ptr<solver::SparseAssembler> assembler_;
+  std::uint64_t pattern_version_ = 0;
   Eigen::VectorXd residual_full_;
   double residual_tolerance_ = 0.0;
   /// The contact elements, zone penalties and committed g_rev of the committed state, which restore() puts

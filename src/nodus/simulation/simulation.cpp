@@ -334,6 +334,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     counters_.assembly_seconds = base.assembly_seconds + newton.timings().evaluation;
     counters_.linear_solve_seconds = base.linear_solve_seconds + newton.timings().linear_solve;
     counters_.factorizations = base.factorizations + newton.timings().factorizations;
+    counters_.analyses = base.analyses + newton.timings().analyses;
     counters_.krylov_iterations = base.krylov_iterations + newton.timings().krylov_iterations;
   };
   for (StepObserver* o : observers) o->on_start(*this);
@@ -491,6 +492,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.assembly_seconds = counters_.assembly_seconds;
   summary.linear_solve_seconds = counters_.linear_solve_seconds;
   summary.factorizations = counters_.factorizations;
+  summary.analyses = counters_.analyses;
   summary.krylov_iterations = counters_.krylov_iterations;
   if (!summary.interrupted)
     for (StepObserver* o : observers) o->on_finish(*this, summary);

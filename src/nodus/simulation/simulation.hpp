@@ -70,6 +70,7 @@ struct RunSummary {
   double assembly_seconds = 0.0;      ///< in residual and tangent evaluations inside Newton (line search too)
   double linear_solve_seconds = 0.0;  ///< in the sparse analysis, factorisation and solves
   int factorizations = 0;             ///< numerical factorisations of the tangent
+  int analyses = 0;                   ///< symbolic analyses of the tangent's pattern
   int krylov_iterations = 0;          ///< GMRES iterations on lagged factors (solver.reuse_factor)
   std::string failure;                ///< why the run stopped early
   /// Stopped on request (RunOptions::stop_after_steps), as if killed: on_finish was not called.
@@ -89,6 +90,7 @@ struct RunCounters {
   double assembly_seconds = 0.0;
   double linear_solve_seconds = 0.0;
   int factorizations = 0;
+  int analyses = 0;
   int krylov_iterations = 0;
 };
 

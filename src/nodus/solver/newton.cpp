@@ -52,7 +52,8 @@ class FactorPreconditioner {
 
 }  // namespace
 
-bool NewtonSolver::solve_linear(const SparseMatrix& tangent, const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
+bool NewtonSolver::solve_linear(const SparseMatrix& tangent, std::uint64_t pattern_version,
+                                const Eigen::VectorXd& rhs, Eigen::VectorXd& x) {
   // A factor of an earlier pattern (before a detection changed the contact elements) still preconditions the
   // current tangent as long as the unknowns are the same: the new pattern is analysed only when the tangent
   // is factorised again. The policy depends on counts only, never on timings, so that a run gives the same
@@ -77,9 +78,11 @@ bool NewtonSolver::solve_linear(const SparseMatrix& tangent, const Eigen::Vector
         "refactorising",
         relative, gmres.iterations());
   }
-  if (!analyzed_) {
+  if (!analyzed_ || pattern_version != analyzed_version_) {
     linear_.analyze(tangent);
     analyzed_ = true;
+    analyzed_version_ = pattern_version;
+    ++timings_.analyses;
   }
   factored_ = linear_.factorize(tangent);
   factor_size_ = tangent.rows();
@@ -109,7 +112,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     Eigen::VectorXd du;
     {
       const Stopwatch watch(timings_.linear_solve);
-      if (!solve_linear(problem.tangent(), residual, du)) {
+      if (!solve_linear(problem.tangent(), problem.pattern_version(), residual, du)) {
         report.failure = fmt::format("the tangent is singular (iteration {})", it);
         report.iterations = it;
         report.residual = norm;

@@ -48,6 +48,7 @@ struct NewtonTimings {
   double linear_solve = 0.0;  ///< symbolic analysis, factorisation and solve (GMRES included)
   int iterations = 0;
   int factorizations = 0;     ///< numerical factorisations of the tangent
+  int analyses = 0;           ///< symbolic analyses of its pattern (a new pattern after a detection)
   int krylov_iterations = 0;  ///< GMRES iterations on lagged factors, summed
 };
 
@@ -68,7 +69,8 @@ class NewtonSolver {
   NewtonSolver(LinearSolver& linear_solver, NewtonSettings settings)
       : linear_(linear_solver), settings_(settings) {}
   /// Iterates from the problem's current unknowns. Convergence needs both |R| <= residual_tolerance and
-  /// scaled |du| <= increment_tolerance. Call reanalyze() when the tangent pattern changes.
+  /// scaled |du| <= increment_tolerance. The tangent's pattern is analysed again when the problem's
+  /// pattern_version() changes, or after reanalyze() (for problems that do not track it).
   /// `loose_residual` > 0: converged as soon as |R| <= loose_residual, whatever the increment (a solve whose
   /// result only serves to update a fixed point, not as a step's answer).
   NewtonReport solve(NonlinearProblem& problem, const FixedPointUpdate& update = {},
@@ -79,11 +81,13 @@ class NewtonSolver {
  private:
   /// Solves `tangent` x = `rhs`: with GMRES on the lagged factor while it serves, else by a new
   /// factorisation. Returns false if the tangent is singular.
-  bool solve_linear(const SparseMatrix& tangent, const Eigen::VectorXd& rhs, Eigen::VectorXd& x);
+  bool solve_linear(const SparseMatrix& tangent, std::uint64_t pattern_version, const Eigen::VectorXd& rhs,
+                    Eigen::VectorXd& x);
 
   LinearSolver& linear_;
   NewtonSettings settings_;
   bool analyzed_ = false;
+  std::uint64_t analyzed_version_ = 0;  ///< the problem's pattern_version() at the analysis
   bool factored_ = false;         ///< the linear solver holds a factorisation (perhaps of an earlier pattern)
   Eigen::Index factor_size_ = 0;  ///< the number of unknowns of that factorisation
   NewtonTimings timings_;

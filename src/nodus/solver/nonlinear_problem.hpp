@@ -2,6 +2,8 @@
 /// What the nonlinear solver needs from the physics: a residual and its tangent over the free unknowns.
 /// The solver knows nothing else of the problem.
 
+#include <cstdint>
+
 #include <Eigen/Core>
 
 #include "nodus/solver/sparse_assembler.hpp"
@@ -24,6 +26,9 @@ class NonlinearProblem {
   /// The tangent of the last evaluate(..., true). Its pattern stays the same between calls unless
   /// pattern_changed() says otherwise.
   virtual const SparseMatrix& tangent() const = 0;
+  /// A number that changes whenever the tangent's pattern changes, so that a solver re-analyses it then (0:
+  /// not tracked; the caller tells the solver, NewtonSolver::reanalyze).
+  virtual std::uint64_t pattern_version() const { return 0; }
   /// Residual norm at which the state is in equilibrium (absolute, in the residual's units), from the last
   /// evaluation.
   virtual double residual_tolerance() const = 0;

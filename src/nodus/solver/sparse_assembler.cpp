@@ -18,21 +18,9 @@ std::vector<int> uniform_offsets(int block_size, std::size_t num_dofs) {
 
 }  // namespace
 
-SparseAssembler::SparseAssembler(int block_size, const std::vector<int>& free_index,
-                                 const std::vector<std::vector<int>>& groups)
-    : SparseAssembler(uniform_offsets(block_size, free_index.size()), free_index, groups) {}
-
-SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
-                                 const std::vector<std::vector<int>>& groups)
-    : offsets_(std::move(block_offsets)), free_index_(std::move(free_index)) {
-  if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != static_cast<int>(free_index_.size()) ||
-      !std::is_sorted(offsets_.begin(), offsets_.end()))
-    throw std::invalid_argument("SparseAssembler: block offsets do not cover the unknowns in order");
-  const int num_blocks = static_cast<int>(offsets_.size()) - 1;
-  const int n =
-      static_cast<int>(std::count_if(free_index_.begin(), free_index_.end(), [](int i) { return i >= 0; }));
-
-  std::vector<std::vector<int>> neighbours(static_cast<std::size_t>(num_blocks));
+BlockAdjacency block_adjacency(int num_blocks, const std::vector<std::vector<int>>& groups) {
+  BlockAdjacency adjacency{std::vector<std::vector<int>>(static_cast<std::size_t>(num_blocks))};
+  std::vector<std::vector<int>>& neighbours = adjacency.neighbours;
   for (const auto& group : groups)
     for (int a : group)
       for (int b : group) neighbours.at(static_cast<std::size_t>(a)).push_back(b);
@@ -40,6 +28,40 @@ SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int
     std::sort(list.begin(), list.end());
     list.erase(std::unique(list.begin(), list.end()), list.end());
   }
+  return adjacency;
+}
+
+SparseAssembler::SparseAssembler(int block_size, const std::vector<int>& free_index,
+                                 const std::vector<std::vector<int>>& groups)
+    : SparseAssembler(uniform_offsets(block_size, free_index.size()), free_index, groups) {}
+
+namespace {
+
+int num_blocks_of(const std::vector<int>& block_offsets) {
+  return block_offsets.empty() ? 0 : static_cast<int>(block_offsets.size()) - 1;
+}
+
+}  // namespace
+
+SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
+                                 const std::vector<std::vector<int>>& groups)
+    : SparseAssembler(block_offsets, std::move(free_index),
+                      block_adjacency(num_blocks_of(block_offsets), groups)) {}
+
+SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
+                                 BlockAdjacency adjacency)
+    : offsets_(std::move(block_offsets)),
+      free_index_(std::move(free_index)),
+      adjacency_(std::move(adjacency)) {
+  if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != static_cast<int>(free_index_.size()) ||
+      !std::is_sorted(offsets_.begin(), offsets_.end()))
+    throw std::invalid_argument("SparseAssembler: block offsets do not cover the unknowns in order");
+  const int num_blocks = static_cast<int>(offsets_.size()) - 1;
+  if (adjacency_.neighbours.size() != static_cast<std::size_t>(num_blocks))
+    throw std::invalid_argument("SparseAssembler: the adjacency does not have one list per block");
+  const std::vector<std::vector<int>>& neighbours = adjacency_.neighbours;
+  const int n =
+      static_cast<int>(std::count_if(free_index_.begin(), free_index_.end(), [](int i) { return i >= 0; }));
 
   // Column by column (global order maps monotonically onto reduced order, so rows come out sorted).
   std::vector<int> outer(static_cast<std::size_t>(n) + 1, 0);

@@ -13,6 +13,16 @@ namespace nodus::solver {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
 
+/// The pattern of a matrix by blocks.
+struct BlockAdjacency {
+  /// Per block, the blocks it is coupled with (itself included), sorted.
+  std::vector<std::vector<int>> neighbours;
+  bool operator==(const BlockAdjacency&) const = default;
+};
+
+/// The adjacency of `num_blocks` blocks that `groups` couple (every block of a group with every other).
+BlockAdjacency block_adjacency(int num_blocks, const std::vector<std::vector<int>>& groups);
+
 class SparseAssembler {
  public:
   /// `block_offsets`: the first unknown of every block, then the number of unknowns (increasing).
@@ -20,6 +30,8 @@ class SparseAssembler {
   /// `groups` lists, for every element, the blocks it couples. All unknowns of coupled blocks are coupled.
   SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
                   const std::vector<std::vector<int>>& groups);
+  /// The same from the blocks' adjacency (block_adjacency of the groups).
+  SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index, BlockAdjacency adjacency);
   /// Blocks of `block_size` unknowns each.
   SparseAssembler(int block_size, const std::vector<int>& free_index,
                   const std::vector<std::vector<int>>& groups);
@@ -30,12 +42,18 @@ class SparseAssembler {
   void add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k);
   const SparseMatrix& matrix() const { return matrix_; }
   const std::vector<int>& free_index() const { return free_index_; }
+  /// Whether this assembler's pattern is the one of `free_index` and `adjacency`: then a new assembler for
+  /// them would build the same matrix pattern, and an analysis of this one serves it.
+  bool has_pattern(const std::vector<int>& free_index, const BlockAdjacency& adjacency) const {
+    return free_index == free_index_ && adjacency == adjacency_;
+  }
 
  private:
   int value_offset(int row, int col) const;
 
   std::vector<int> offsets_;
   std::vector<int> free_index_;
+  BlockAdjacency adjacency_;
   SparseMatrix matrix_;
 };
 
