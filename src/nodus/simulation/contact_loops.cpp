@@ -259,11 +259,11 @@ solver::NewtonReport ContactLoops::solve() {
   stats_ = ContactStepStats{};
   solver::NewtonReport total;
   install(detect());
-  // Every step attempt starts with an analysis of its tangent, even of a pattern analysed before, as a run
-  // resumed at this step does: UMFPACK's and MUMPS's analyses may read the values as well as the pattern, and
-  // a resumed run must repeat the one never stopped. Loop 2's further detections keep the analysis when they
-  // keep the pattern (EquilibriumProblem::pattern_version).
-  newton_.reanalyze();
+  // A run resumed at this step starts with an analysis: where the solver's analysis is given the values
+  // (UMFPACK), every step attempt starts with one, so that the resumed run repeats the one never stopped.
+  // Otherwise, and for loop 2's further detections, the analysis is kept with the pattern
+  // (EquilibriumProblem::pattern_version).
+  newton_.restart();
   stats_.detections = 1;
   bool settled = false;  // the last detection changed the contact forces by less than kSetTolerance
   for (;;) {

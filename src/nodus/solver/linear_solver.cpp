@@ -104,6 +104,7 @@ class MumpsSolver final : public LinearSolver {
   }
 
   std::string name() const override { return symmetric_ ? "mumps_ldlt" : "mumps_lu"; }
+  bool analysis_reads_values() const override { return false; }  // it is handed zeros (analyze)
 
  private:
   static constexpr MUMPS_INT kUseCommWorld = -987654;  // the sequential library's only communicator
@@ -166,6 +167,7 @@ class CholmodSolver final : public LinearSolver {
     return fallback_->solve(b);
   }
   std::string name() const override { return try_llt_ ? "cholmod" : "cholmod_ldlt"; }
+  bool analysis_reads_values() const override { return false; }  // cholmod_analyze, MUMPS's (above)
 
  private:
   bool try_llt_;
@@ -188,6 +190,9 @@ class UmfpackSolver final : public LinearSolver {
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override { return lu_.solve(b); }
   std::string name() const override { return "umfpack"; }
+  // umfpack_symbolic is given the values. Its documentation says that they only serve its statistics (how
+  // many nonzeros the ordering puts on the diagonal); nodus does not rely on that.
+  bool analysis_reads_values() const override { return true; }
 
  private:
   Eigen::UmfPackLU<SparseMatrix> lu_;

@@ -21,6 +21,9 @@ class LinearSolver {
   /// Solves a x = b with the last factorisation.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
   virtual std::string name() const = 0;
+  /// Whether analyze() reads the values as well as the pattern: then two analyses of one pattern may differ,
+  /// and a run that must repeat itself exactly (resumed from a checkpoint) has to analyse at the same points.
+  virtual bool analysis_reads_values() const { return true; }
 };
 
 enum class LinearSolverKind {

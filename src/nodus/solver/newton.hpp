@@ -76,6 +76,12 @@ class NewtonSolver {
   NewtonReport solve(NonlinearProblem& problem, const FixedPointUpdate& update = {},
                      double loose_residual = 0.0);
   void reanalyze() { analyzed_ = false; }
+  /// Starts a new sequence of solves (a load step attempt) as a run resumed there would start it: the
+  /// tangent is analysed again if the linear solver's analysis reads the values
+  /// (LinearSolver::analysis_reads_values), so that the resumed run repeats the one never stopped.
+  void restart() {
+    if (linear_.analysis_reads_values()) analyzed_ = false;
+  }
   const NewtonTimings& timings() const { return timings_; }
 
  private:
