@@ -129,7 +129,8 @@ TEST(NewtonPattern, ARestartAnalysesAgainWhereTheAnalysisReadsTheValues) {
                                 LinearSolverKind::mumps_ldlt, LinearSolverKind::mumps_lu})
     EXPECT_FALSE(make_linear_solver(kind)->analysis_reads_values());
 
-  // (MUMPS's PORD ordering fails on a 3x3 matrix: CHOLMOD stands for the solvers that read the pattern alone.)
+  // (MUMPS's PORD ordering fails on a 3x3 matrix: CHOLMOD stands for the solvers that read the pattern
+  // alone.)
   for (LinearSolverKind kind : {LinearSolverKind::umfpack, LinearSolverKind::cholmod}) {
     Linear problem;
     CountingSolver linear(kind);

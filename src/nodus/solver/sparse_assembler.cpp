@@ -16,6 +16,10 @@ std::vector<int> uniform_offsets(int block_size, std::size_t num_dofs) {
   return offsets;
 }
 
+int num_blocks_of(const std::vector<int>& block_offsets) {
+  return block_offsets.empty() ? 0 : static_cast<int>(block_offsets.size()) - 1;
+}
+
 }  // namespace
 
 BlockAdjacency block_adjacency(int num_blocks, const std::vector<std::vector<int>>& groups) {
@@ -34,14 +38,6 @@ BlockAdjacency block_adjacency(int num_blocks, const std::vector<std::vector<int
 SparseAssembler::SparseAssembler(int block_size, const std::vector<int>& free_index,
                                  const std::vector<std::vector<int>>& groups)
     : SparseAssembler(uniform_offsets(block_size, free_index.size()), free_index, groups) {}
-
-namespace {
-
-int num_blocks_of(const std::vector<int>& block_offsets) {
-  return block_offsets.empty() ? 0 : static_cast<int>(block_offsets.size()) - 1;
-}
-
-}  // namespace
 
 SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
                                  const std::vector<std::vector<int>>& groups)
