@@ -430,6 +430,32 @@ TEST(ScenarioReader, DirectorOnlyAlmostParallelIsAccepted) {
   EXPECT_NEAR((s.beams[0].director1 - Vec3::UnitY()).norm(), 0.0, 1e-9);
 }
 
+TEST(ScenarioReader, AStageMayNameItsOwnLineSearch) {
+  // Line 28 is the stage's `steps`.
+  const Scenario solver = parse_scenario(kBase, "knot.yaml");
+  EXPECT_EQ(solver.stages[0].line_search, StageSwitch::solver);
+  const Scenario on = parse_scenario(after_line(kBase, 28, "    line_search: true"), "knot.yaml");
+  EXPECT_EQ(on.stages[0].line_search, StageSwitch::on);
+  const Scenario off = parse_scenario(after_line(kBase, 28, "    line_search: false"), "knot.yaml");
+  EXPECT_EQ(off.stages[0].line_search, StageSwitch::off);
+  EXPECT_TRUE(fails_at(after_line(kBase, 28, "    line_search: maybe"), 29, "stages[0].line_search"));
+
+  // The fingerprint of a stage without its own setting has no line for it (the checkpoints of scenarios
+  // written before the key stay valid); one with it differs.
+  const std::string text = state_fingerprint_text(solver, 1);
+  EXPECT_EQ(text.find("line_search = solver"), std::string::npos) << text;
+  EXPECT_NE(text.find("solver.line_search = false"), std::string::npos) << text;
+  EXPECT_NE(state_fingerprint_text(on, 1), text);
+  EXPECT_NE(state_fingerprint_text(off, 1), text);
+  EXPECT_NE(state_fingerprint_text(on, 1), state_fingerprint_text(off, 1));
+
+  // The echo shows it where it is set, and reads back as the same scenario.
+  const std::string echo = describe(on);
+  EXPECT_NE(echo.find("    line_search: true\n"), std::string::npos) << echo;
+  EXPECT_EQ(describe(solver).find("    line_search:"), std::string::npos);
+  EXPECT_EQ(state_fingerprint_text(parse_scenario(echo, "echo.yaml"), 1), state_fingerprint_text(on, 1));
+}
+
 // ---- errors: one line "FILE:LINE: KEY: expected ..., got ..." ----
 
 TEST(ScenarioErrors, ExampleFromTheSpecification) {

@@ -331,9 +331,9 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
       [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
   checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 4, Keyframe 1, SolverSettings 13,
+  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 5, Keyframe 1, SolverSettings 13,
   // ContactSettings 20.
-  EXPECT_EQ(checked, 46);
+  EXPECT_EQ(checked, 47);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();

@@ -387,6 +387,9 @@ inline std::span<const Key<LoadTarget>> LoadTarget::keys() {
   return keys;
 }
 
+/// A stage's choice of a solver setting: the `solver` section's, or its own.
+enum class StageSwitch { solver, on, off };
+
 /// One stage of the loading program.
 struct StageSpec {
   std::string name;
@@ -402,6 +405,8 @@ struct StageSpec {
   /// value of 0 decays to 1e-6 of the start value and is exactly 0 at the stage end); 0: none.
   double stabilization = 0.0;
   double stabilization_end = 0.0;
+  /// Newton's line search in this stage: solver.line_search (solver), or on or off.
+  StageSwitch line_search = StageSwitch::solver;
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<StageSpec>> keys();
@@ -427,6 +432,12 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
               "the drag at the stage end, reached geometrically from stabilization; 0: decays "
               "to 1e-6 of it and is exactly 0 at the stage end")
           .shown_default("stabilization"),
+      K::choice(
+          "stages[].line_search", "solver | true | false",
+          [](const StageSpec& s) { return static_cast<int>(s.line_search); },
+          [](StageSpec& s, int i) { s.line_search = static_cast<StageSwitch>(i); },
+          "damp the Newton updates of this stage by a line search (solver.line_search); solver: as "
+          "solver.line_search. The knot's releases take it, to come to rest (docs/knot.md)"),
       K::doc("stages[].activate", KeyType::list, "", "[]", "of condition names",
              "conditions switched on at the start of the stage"),
       K::doc("stages[].release", KeyType::list, "", "[]", "of condition names, none also in activate",
@@ -495,7 +506,7 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
                "a step converged in at most this many iterations lets the next step grow"),
       K::flag("solver.line_search", &SolverSettings::line_search,
               "damp Newton updates by a line search on the energy slope (off: faster on every "
-              "verification case, docs/model.md)"),
+              "verification case, docs/model.md; a stage may choose otherwise, stages[].line_search)"),
       K::choice(
           "solver.director_update", "rotation | additive",
           [](const SolverSettings& c) { return static_cast<int>(c.director_update); },

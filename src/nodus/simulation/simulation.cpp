@@ -391,6 +391,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     const double t1 = progress_.stage_start_time + stage.duration;
     problem_->set_stabilization(
         {progress_.stage_start_time, t1, stage.stabilization, stage.stabilization_end});
+    newton.set_line_search(stage.line_search == scenario::StageSwitch::solver
+                               ? scenario_.solver.line_search
+                               : stage.line_search == scenario::StageSwitch::on);
     bool warned_capped = false;  // a step of this stage ended a contact loop at its cap (warned once)
     for (StepObserver* o : observers) o->on_stage(*this, s);
 

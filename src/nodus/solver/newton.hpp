@@ -82,6 +82,8 @@ class NewtonSolver {
   void restart() {
     if (linear_.analysis_reads_values()) analyzed_ = false;
   }
+  /// Damps the updates of later solves by the line search, or not (a stage's own choice).
+  void set_line_search(bool on) { settings_.line_search = on; }
   const NewtonTimings& timings() const { return timings_; }
 
  private:
