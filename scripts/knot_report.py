@@ -16,6 +16,9 @@ Inputs (DIR is a run's output folder):
   DIR/stages/NNN_STAGE_nodes.csv                    stage-end states, for Fig. 12 (skipped if absent)
 
 Definitions, for each state (the tightened one = the main run's final state, then each branch's final):
+  knot            the knot type of the rod's centreline closed far away (nodus.knot_invariant, the
+                  Alexander polynomial): trefoil, or unknot for a released knot that came undone
+                  (unknown where every projection has a near-crossing).
   in contact      elements with normal_force > 0; s_a, s_b the smallest and largest rod arc length s among
                   their abscissa_i, abscissa_j: the knot occupies [s_a, s_b].
   abscissa        along the intermediate geometry: within a zone (elements in zeta order) the length of the
@@ -85,7 +88,7 @@ ZOOM_MARGIN = 3.0         # mm of rod either side of the knot shown in Fig. 15
 DEFAULT_RADIUS = 0.1      # mm, rod radius of Sect. 7.2 when it cannot be measured from the contact table
 FIGURE_WIDTH = 11.0       # inches, of the rod figures
 ROW_TITLE, ROW_LABEL = 0.35, 0.6   # inches above (panel title) and below (x label) each row of panels
-REPORT_COLUMNS = ["state", "friction", "tightening_force_N", "stabilization_force_N", "zones",
+REPORT_COLUMNS = ["state", "friction", "knot", "tightening_force_N", "stabilization_force_N", "zones",
                   "contact_elements", "elements_in_contact", "intermediate_length_mm", "max_normal_N",
                   "total_normal_N", "max_tangential_N", "total_tangential_N", "tail_angle_deg",
                   "loop_radius_mm", "loop_length_mm", "max_penetration_mm"]
@@ -252,9 +255,17 @@ def analyse(state):
     contact = state.contact
     m = nodus.knot_metrics(nodes_polyline(state.nodes), contact, tail_chord=TAIL_CHORD, min_spacing=MIN_SPACING,
                            min_loop_nodes=MIN_LOOP_NODES)
+    try:
+        invariant = nodus.knot_invariant(nodes_polyline(state.nodes)[0])
+        knot = ("trefoil" if invariant["trefoil"] else "unknot" if invariant["unknot"]
+                else invariant["polynomial"])
+    except RuntimeError:  # no projection without a near-crossing: a curve that touches itself
+        knot = "unknown"
     row = {
         "state": state.name,
         "friction": state.friction,
+        # A released knot may come undone: the centreline closed far away is then the unknot.
+        "knot": knot,
         "tightening_force_N": pull_force(state.last_step),
         "stabilization_force_N": state.last_step.get("stabilization_force", np.nan),
         "zones": m["zones"],

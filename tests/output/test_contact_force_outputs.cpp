@@ -317,6 +317,24 @@ TEST(ContactForceOutputs, DetectionOnlyKeepsTheGeometryColumns) {
   EXPECT_EQ(VtpFile(dir / "vtk" / "contact_000002.vtp").cell_data().all("DataArray").size(), 6u);
 }
 
+TEST(ContactForceOutputs, AConvergedStateWithoutContactKeepsTheForceColumns) {
+  // The upper beam 2 mm above the lower one: nothing touches in any step (a knot that came undone ends so).
+  std::string text = kCrossing;
+  text.replace(text.find("FORCES"), 6, "true");
+  text.replace(text.find("0.21]"), 5, "2.21]");
+  ScratchDir dir;
+  simulation::Simulation sim(scenario::parse_scenario(text, "apart.yaml"));
+  ContactCsvWriter tables(dir.path());
+  ASSERT_TRUE(sim.run({&tables}).converged);
+  ASSERT_TRUE(sim.contact_forces());
+  ASSERT_TRUE(sim.contact()->elements.empty());
+  const auto rows = read_csv(dir.path() / "contact_final.csv");
+  ASSERT_EQ(rows.size(), 1u);  // the header alone
+  std::vector<std::string> header = kGeometryColumns;
+  header.insert(header.end(), kForceColumns.begin(), kForceColumns.end());
+  EXPECT_EQ(rows[0], header);
+}
+
 TEST(ContactForceOutputs, ContactTablesOnlyWhenAskedAndStaleOnesRemoved) {
   CrossingRun run;  // its recorder is not used
   scenario::Scenario s = crossing(true);

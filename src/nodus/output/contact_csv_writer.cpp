@@ -1,6 +1,5 @@
 #include "nodus/output/contact_csv_writer.hpp"
 
-#include <cassert>
 #include <charconv>
 #include <regex>
 #include <stdexcept>
@@ -30,10 +29,10 @@ void remove_file(const std::filesystem::path& path) {
 const std::vector<simulation::ContactState>* contact_states_to_write(const simulation::Simulation& sim) {
   const contact::ContactGeometry* geometry = sim.contact();
   if (!geometry || !sim.contact_forces()) return nullptr;
+  // After a converged step Simulation::contact_states() holds one state per element of contact(); before the
+  // first, none (the table then has no force columns). A converged state without any contact element has
+  // none of either: its table has the force columns and no rows (a knot that came undone).
   const std::vector<simulation::ContactState>& states = sim.contact_states();
-  if (states.empty()) return nullptr;  // no step converged yet
-  // Simulation::contact_states() holds one state per element of contact() after a converged step.
-  assert(states.size() == geometry->elements.size());
   return states.size() == geometry->elements.size() ? &states : nullptr;
 }
 
