@@ -6,7 +6,10 @@
 // taken out of contact (examples/tool_drag.yaml). Its contact normals turn from one step to the next
 // (the beam bends under the tool), so one Newton solve per detection (max_normal_iterations: 1) leaves them
 // unconverged, and one detection per step (max_detections: 1) never checks the set of contact elements.
+// Also: a step whose converged state a detection finds with a surface carried into another is cut back.
 
+#include <algorithm>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -15,6 +18,7 @@
 #include <spdlog/sinks/ringbuffer_sink.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/contact/detection.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -174,6 +178,56 @@ ContactState pressing(double normal_reaction) {
 
 const auto first_node = [](int element) { return 2 * element; };
 const auto nothing_prescribed = [](int) { return false; };
+
+// A beam pushed onto another by a force, from 1 mm away between the axes (no proximity zone: delta_prox is
+// 0.3 mm), with one detection per step (max_detections: 1), the one at the step's start. A step that starts
+// without a contact element ends, elastically, with the upper beam's surface carried into the lower one;
+// accepted, the run goes on with the beams interlocked (without the check: a detection finds 6.9 p_max of
+// penetration in a converged state, and no contact force at the end). A detection of each converged state
+// sees the overlap and the step is cut back until the contact is detected at a step's start; the beam then
+// rests on the other. Checked by a detection of every converged state: no penetration beyond 4 p_max.
+TEST(ContactLoops, AStepThatCarriesASurfaceIntoAnotherIsCutBack) {
+  const std::string text = R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: lower, material: nylon, radius: 0.1, length: 4, elements: 8, start: [-2, 0, 0]}
+  - {name: upper, material: nylon, radius: 0.1, length: 4, elements: 8, start: [0, -2, 1.0],
+     direction: [0, 1, 0], director1: [1, 0, 0]}
+conditions:
+  - {name: lower_a, type: clamp, beam: lower, at: start}
+  - {name: lower_b, type: clamp, beam: lower, at: end}
+  - {name: upper_a, type: clamp, beam: upper, at: start}
+  - {name: push, type: load, beam: upper, at: 8}
+stages:
+  - name: push
+    steps: 1
+    loads:
+      push: {force: [0, 0, -0.15]}
+contact: {self_contact: false, max_penetration: 0.002, max_detections: 1}
+)";
+  Simulation sim(scenario::parse_scenario(text, "push.yaml"));
+  class Deepest : public StepObserver {
+   public:
+    double penetration = 0.0;  // the largest penetration a detection of a converged state finds [mm]
+    std::vector<StepRecord> records;
+    void on_step(const Simulation& s, const StepRecord& r) override {
+      records.push_back(r);
+      for (const contact::ContactElement& e :
+           contact::detect(s.model(), s.state(), s.detection_parameters()).elements)
+        penetration = std::max(penetration, -e.gap);
+    }
+  } deepest;
+  const RunSummary summary = sim.run({&deepest});
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  ASSERT_FALSE(deepest.records.empty());
+  std::printf(
+      "pushed onto the other beam: %d steps, the first cut back %d times; deepest penetration %.3g p_max; "
+      "normal force at the end %.4g N\n",
+      summary.steps, deepest.records.front().cutbacks, deepest.penetration / 0.002,
+      deepest.records.back().normal_force);
+  EXPECT_LT(deepest.penetration, 4 * 0.002);
+  EXPECT_GT(deepest.records.back().normal_force, 0.0);  // the beam rests on the other
+}
 
 TEST(ZoneImbalance, AZoneFarFromBalanceIsNotHiddenByTheTotalForce) {
   // Zone 0 carries 10 N between elements 0 and 1 (nodes 0-3), zone 1 0.01 N between elements 5 and 6 (nodes
