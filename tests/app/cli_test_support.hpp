@@ -24,11 +24,21 @@ struct Result {
   std::string err;  ///< what it wrote on stderr
 };
 
-/// A folder of this test process, created on first use.
+/// A folder of this test process, created on first use and removed when the process ends, unless a test of
+/// it failed (then its files are left for a look, and the failure message names them through their paths).
 inline fs::path scratch() {
-  const fs::path dir = fs::temp_directory_path() / ("nodus_app_" + std::to_string(::getpid()));
-  fs::create_directories(dir);
-  return dir;
+  struct Folder {
+    fs::path path = fs::temp_directory_path() / ("nodus_app_" + std::to_string(::getpid()));
+    // Destroyed before gtest's UnitTest, which exists before any test asks for the folder.
+    ~Folder() {
+      if (!::testing::UnitTest::GetInstance()->Passed()) return;
+      std::error_code ignored;
+      fs::remove_all(path, ignored);
+    }
+  };
+  static const Folder folder;
+  fs::create_directories(folder.path);
+  return folder.path;
 }
 
 /// Runs `nodus ARGS`, stdout discarded.
