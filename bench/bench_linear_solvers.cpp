@@ -168,3 +168,7 @@ BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_mumps_ldlt, Case::indefinite, Li
     ->Apply(sizes);
 BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_mumps_lu, Case::indefinite, LinearSolverKind::mumps_lu)
     ->Apply(sizes);
+// KLU pivots in the first factorisation after the analysis and keeps those pivots in the next ones
+// (klu_refactor): the iterations measure the refactorisation.
+BENCHMARK_CAPTURE(BM_FactorizeSolve, pd_klu, Case::pd, LinearSolverKind::klu)->Apply(sizes);
+BENCHMARK_CAPTURE(BM_FactorizeSolve, indefinite_klu, Case::indefinite, LinearSolverKind::klu)->Apply(sizes);

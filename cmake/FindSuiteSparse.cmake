@@ -1,11 +1,11 @@
-# FindSuiteSparse: CHOLMOD and UMFPACK (with their AMD/COLAMD/METIS companions) from Debian's
+# FindSuiteSparse: CHOLMOD, UMFPACK and KLU (with their AMD/COLAMD/METIS companions) from Debian's
 # libsuitesparse-dev 5.x, which ships no CMake package configuration of its own.
 #
-# Imported targets: SuiteSparse::CHOLMOD, SuiteSparse::UMFPACK. Result variable: SuiteSparse_FOUND.
+# Imported targets: SuiteSparse::CHOLMOD, SuiteSparse::UMFPACK, SuiteSparse::KLU. Result variable: SuiteSparse_FOUND.
 
 find_path(SuiteSparse_INCLUDE_DIR NAMES cholmod.h PATH_SUFFIXES suitesparse)
 
-set(_nodus_ss_components cholmod umfpack amd colamd camd ccolamd suitesparseconfig metis)
+set(_nodus_ss_components cholmod umfpack klu btf amd colamd camd ccolamd suitesparseconfig metis)
 set(_nodus_ss_required_vars SuiteSparse_INCLUDE_DIR)
 foreach(_c IN LISTS _nodus_ss_components)
   find_library(SuiteSparse_${_c}_LIBRARY NAMES ${_c})
@@ -27,5 +27,8 @@ if(SuiteSparse_FOUND AND NOT TARGET SuiteSparse::CHOLMOD)
     SuiteSparse::camd SuiteSparse::ccolamd SuiteSparse::metis SuiteSparse::suitesparseconfig)
   add_library(SuiteSparse::UMFPACK INTERFACE IMPORTED)
   target_link_libraries(SuiteSparse::UMFPACK INTERFACE SuiteSparse::umfpack SuiteSparse::CHOLMOD)
+  add_library(SuiteSparse::KLU INTERFACE IMPORTED)
+  target_link_libraries(SuiteSparse::KLU INTERFACE SuiteSparse::klu SuiteSparse::btf SuiteSparse::amd SuiteSparse::colamd
+    SuiteSparse::suitesparseconfig)
 endif()
 mark_as_advanced(SuiteSparse_INCLUDE_DIR)

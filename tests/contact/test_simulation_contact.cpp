@@ -117,9 +117,12 @@ TEST(SimulationContact, TheSolutionDoesNotDependOnTheLinearSolver) {
   const auto frozen = run("contact: {friction: 0.3}\n");
   check(frozen, run("contact: {friction: 0.3}\nsolver: {linear_solver: mumps}\n"), "mumps, frozen");
   check(frozen, run("contact: {friction: 0.3}\nsolver: {linear_solver: umfpack}\n"), "umfpack, frozen");
-  // The varying friction tangent, not symmetric: UMFPACK's LU against MUMPS's.
+  check(frozen, run("contact: {friction: 0.3}\nsolver: {linear_solver: klu}\n"), "klu, frozen");
+  // The varying friction tangent, not symmetric: UMFPACK's LU against MUMPS's and KLU's.
   const std::string varying = "contact: {friction: 0.3, friction_tangent: varying}\nsolver: {linear_solver: ";
-  check(run(varying + "umfpack}\n"), run(varying + "mumps}\n"), "mumps, varying");
+  const auto umfpack = run(varying + "umfpack}\n");
+  check(umfpack, run(varying + "mumps}\n"), "mumps, varying");
+  check(umfpack, run(varying + "klu}\n"), "klu, varying");
 }
 
 }  // namespace

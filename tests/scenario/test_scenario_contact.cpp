@@ -264,7 +264,7 @@ TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
   const std::string expected =
       "contact.friction_tangent: expected frozen with solver.linear_solver: cholmod (the varying tangent is "
       "not "
-      "symmetric and needs LU: set solver.linear_solver: umfpack or mumps), got varying";
+      "symmetric and needs LU: set solver.linear_solver: umfpack, mumps or klu), got varying";
   // CHOLMOD by default, and by name; the line is that of friction_tangent.
   EXPECT_EQ(error_of("contact:\n  friction: 0.3\n  friction_tangent: varying\n"),
             "knot.yaml:27: " + expected);

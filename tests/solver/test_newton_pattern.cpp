@@ -125,6 +125,7 @@ TEST(NewtonPattern, ARestartAnalysesAgainWhereTheAnalysisReadsTheValues) {
   // (umfpack_symbolic), so it is done again; CHOLMOD's and MUMPS's read the pattern alone
   // (MUMPS is handed zeros), so an analysis of the same pattern still serves.
   EXPECT_TRUE(make_linear_solver(LinearSolverKind::umfpack)->analysis_reads_values());
+  EXPECT_TRUE(make_linear_solver(LinearSolverKind::klu)->analysis_reads_values());
   for (LinearSolverKind kind : {LinearSolverKind::cholmod, LinearSolverKind::cholmod_ldlt,
                                 LinearSolverKind::mumps_ldlt, LinearSolverKind::mumps_lu})
     EXPECT_FALSE(make_linear_solver(kind)->analysis_reads_values());

@@ -456,7 +456,7 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
   return keys;
 }
 
-enum class LinearSolverKind { cholmod, umfpack, mumps };
+enum class LinearSolverKind { cholmod, umfpack, mumps, klu };
 
 /// The `solver` section. The Newton and stepping defaults are the library's (solver::NewtonSettings,
 /// solver::StepControl); the others equal those of the library structs that take them, which a test checks
@@ -489,11 +489,11 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
   using K = Key<SolverSettings>;
   static const K keys[] = {
       K::choice(
-          "solver.linear_solver", "cholmod | umfpack | mumps",
+          "solver.linear_solver", "cholmod | umfpack | mumps | klu",
           [](const SolverSettings& c) { return static_cast<int>(c.linear_solver); },
           [](SolverSettings& c, int i) { c.linear_solver = static_cast<LinearSolverKind>(i); },
-          "sparse direct solver: cholmod (Cholesky), umfpack (LU) or mumps (multifrontal LDL^T, or LU where "
-          "the tangent is not symmetric)"),
+          "sparse direct solver: cholmod (Cholesky), umfpack (LU), mumps (multifrontal LDL^T, or LU where "
+          "the tangent is not symmetric) or klu (sparse LU, keeping its pivots while they serve)"),
       K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
                ranges::at_least_one, "iterations per step attempt"),
       K::real("solver.residual_tolerance", &SolverSettings::residual_tolerance, "", "> 0", ranges::positive,
@@ -570,7 +570,7 @@ inline std::span<const Key<OutputSettings>> OutputSettings::keys() {
 /// itself is the same either way.
 enum class FrictionTangent {
   frozen,   ///< R_N held fixed, as in Durville 2012, Sect. 5.3: symmetric, any linear solver
-  varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack)
+  varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack, mumps or klu)
 };
 
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
@@ -674,7 +674,7 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           [](ContactSettings& c, int i) { c.friction_tangent = static_cast<FrictionTangent>(i); },
           "how Newton's tangent linearises the friction force (the force is the same). "
           "frozen: R_N held fixed, a symmetric tangent. varying: the exact derivative with "
-          "R_N varying, not symmetric: needs solver.linear_solver: umfpack or mumps "
+          "R_N varying, not symmetric: needs solver.linear_solver: umfpack, mumps or klu "
           "(docs/contact.md)"),
       K::choice(
           "contact.particles", "fixed | facing",

@@ -40,7 +40,7 @@ constexpr std::string_view kReleaseOnSeveralBodiesExpected =
 // for explicitly rather than switched on behind the user's back, so that the file says which solver runs.
 constexpr std::string_view kFrictionTangentExpected =
     "frozen with solver.linear_solver: cholmod (the varying tangent is not symmetric and needs LU: "
-    "set solver.linear_solver: umfpack or mumps)";
+    "set solver.linear_solver: umfpack, mumps or klu)";
 
 /// The word of the file for a condition type: clamp, motion, rigid, load.
 std::string_view type_name(ConditionType type);

@@ -177,8 +177,8 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   if (c.friction > 0.0)
     laws.friction = contact::FrictionLaw{
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
-  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack, mumps)
-  // only.
+  // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack, mumps,
+  // klu) only.
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
@@ -199,6 +199,8 @@ solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, boo
       return solver::LinearSolverKind::umfpack;
     case scenario::LinearSolverKind::mumps:
       return symmetric ? solver::LinearSolverKind::mumps_ldlt : solver::LinearSolverKind::mumps_lu;
+    case scenario::LinearSolverKind::klu:
+      return solver::LinearSolverKind::klu;
   }
   return solver::LinearSolverKind::cholmod;
 }

@@ -1,7 +1,10 @@
 #include "nodus/solver/linear_solver.hpp"
 
 #include <dmumps_c.h>
+#include <klu.h>
 
+#include <algorithm>
+#include <cmath>
 #include <limits>
 #include <stdexcept>
 #include <vector>
@@ -198,6 +201,93 @@ class UmfpackSolver final : public LinearSolver {
   Eigen::UmfPackLU<SparseMatrix> lu_;
 };
 
+/// KLU (SuiteSparse): a left-looking sparse LU with partial pivoting, for the small, sparse tangents of one
+/// or a few rods, where the supernodal and multifrontal methods' dense kernels have little to do. After each
+/// analysis the first factorisation chooses the pivots; the next ones keep that pivot sequence
+/// (klu_refactor), and a solve whose residual shows that the sequence no longer serves is done again after a
+/// factorisation that pivots anew.
+class KluSolver final : public LinearSolver {
+ public:
+  KluSolver() {
+    klu_defaults(&common_);
+    common_.halt_if_singular = 1;
+  }
+  KluSolver(const KluSolver&) = delete;
+  KluSolver& operator=(const KluSolver&) = delete;
+  ~KluSolver() override { free_all(); }
+
+  void analyze(const SparseMatrix& a) override {
+    free_all();
+    a_ = a;
+    a_.makeCompressed();
+    symbolic_ = klu_analyze(static_cast<int>(a_.cols()), a_.outerIndexPtr(), a_.innerIndexPtr(), &common_);
+    if (symbolic_ == nullptr)
+      throw std::runtime_error(fmt::format("KLU could not analyse the matrix (status {})", common_.status));
+  }
+
+  bool factorize(const SparseMatrix& a) override {
+    if (symbolic_ == nullptr) throw std::logic_error("KluSolver::factorize: analyze() was not called");
+    if (a.nonZeros() != a_.nonZeros() || a.cols() != a_.cols())
+      throw std::logic_error("KluSolver::factorize: the pattern changed since analyze()");
+    std::copy(a.valuePtr(), a.valuePtr() + a.nonZeros(), a_.valuePtr());
+    if (numeric_ != nullptr && klu_refactor(a_.outerIndexPtr(), a_.innerIndexPtr(), a_.valuePtr(), symbolic_,
+                                            numeric_, &common_) == 1) {
+      refactored_ = true;
+      return true;
+    }
+    return factor_anew();
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
+    Eigen::VectorXd x = solve_once(b);
+    if (refactored_ && !accurate(b, x)) {
+      if (!factor_anew())
+        return Eigen::VectorXd::Constant(b.size(), std::numeric_limits<double>::quiet_NaN());
+      x = solve_once(b);
+    }
+    return x;
+  }
+
+  std::string name() const override { return "klu"; }
+  // The pivots chosen by the first factorisation after an analysis decide the later ones' round-off: a run
+  // that must repeat itself exactly analyses where the run it repeats did.
+  bool analysis_reads_values() const override { return true; }
+
+ private:
+  bool factor_anew() {
+    if (numeric_ != nullptr) klu_free_numeric(&numeric_, &common_);
+    numeric_ = klu_factor(a_.outerIndexPtr(), a_.innerIndexPtr(), a_.valuePtr(), symbolic_, &common_);
+    refactored_ = false;
+    return numeric_ != nullptr;
+  }
+  Eigen::VectorXd solve_once(const Eigen::VectorXd& b) {
+    Eigen::VectorXd x = b;
+    klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_);
+    return x;
+  }
+  /// Whether |a x - b| is at round-off level: below 1e-10 of |a| |x| + |b| (infinity norms).
+  bool accurate(const Eigen::VectorXd& b, const Eigen::VectorXd& x) const {
+    if (!x.allFinite()) return false;
+    const double r = (a_ * x - b).lpNorm<Eigen::Infinity>();
+    double norm_a = 0;
+    for (int j = 0; j < a_.outerSize(); ++j)
+      for (SparseMatrix::InnerIterator it(a_, j); it; ++it) norm_a = std::max(norm_a, std::abs(it.value()));
+    return r <= 1e-10 * (norm_a * x.lpNorm<Eigen::Infinity>() + b.lpNorm<Eigen::Infinity>());
+  }
+  void free_all() {
+    if (numeric_ != nullptr) klu_free_numeric(&numeric_, &common_);
+    if (symbolic_ != nullptr) klu_free_symbolic(&symbolic_, &common_);
+    refactored_ = false;
+  }
+
+  klu_common common_{};
+  klu_symbolic* symbolic_ = nullptr;
+  klu_numeric* numeric_ = nullptr;
+  SparseMatrix
+      a_;  ///< the matrix of the last factorisation, compressed (KLU reads it again when it refactors)
+  bool refactored_ = false;
+};
+
 }  // namespace
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind) {
@@ -212,6 +302,8 @@ std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind) {
       return std::make_unique<MumpsSolver>(true);
     case LinearSolverKind::mumps_lu:
       return std::make_unique<MumpsSolver>(false);
+    case LinearSolverKind::klu:
+      return std::make_unique<KluSolver>();
   }
   return nullptr;
 }

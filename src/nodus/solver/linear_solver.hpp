@@ -33,6 +33,7 @@ enum class LinearSolverKind {
   umfpack,       ///< UMFPACK LU with partial pivoting
   mumps_ldlt,    ///< MUMPS multifrontal LDL^T with pivoting (symmetric, definite or not); reads one triangle
   mumps_lu,      ///< MUMPS multifrontal LU (any matrix)
+  klu,  ///< KLU sparse LU with partial pivoting, the pivots kept across factorisations while they serve
 };
 
 std::unique_ptr<LinearSolver> make_linear_solver(LinearSolverKind kind);
