@@ -51,7 +51,7 @@ std::string strand(const std::vector<int>& order, int elements, double turn, int
          "]}\n  - {name: turn, type: motion, bodies: [" + end + "], dofs: [y, z], pivot: [6, 0, 0]}\n" +
          "  - {name: keep, type: clamp, bodies: [" + end + "], dofs: [rotation]}\n" + pulls +
          "contact: {friction: 0.3, particles: facing, friction_tangent: varying}\nsolver: {linear_solver: "
-         "umfpack}\n"
+         "klu}\n"
          "stages:\n  - name: twist\n    steps: " +
          std::to_string(steps) + "\n    motions:\n      turn: {rotation: [" + std::to_string(turn) +
          ", 0, 0]}\n";
