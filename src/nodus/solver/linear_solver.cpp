@@ -262,6 +262,7 @@ class KluSolver final : public LinearSolver {
     return numeric_ != nullptr;
   }
   Eigen::VectorXd solve_once(const Eigen::VectorXd& b) {
+    if (numeric_ == nullptr) throw std::logic_error("KluSolver::solve: no factorisation to solve with");
     Eigen::VectorXd x = b;
     klu_solve(symbolic_, numeric_, static_cast<int>(x.size()), 1, x.data(), &common_);
     return x;
