@@ -3,6 +3,8 @@
 // within a tolerance. The problem: four parallel beams on a square of side 1.99 R, each pressed into its two
 // neighbours by 0.01 R, with friction, evaluated away from the committed (reference) state so that elements
 // both stick and slip. It has enough beam and contact elements to go several times round the ring of buffers.
+// Then a whole run with friction on KLU, which uses no BLAS: its steps and final state do not depend on the
+// number of threads either.
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,8 @@
 #include <cstring>
 #include <optional>
 #include <random>
+#include <string>
+#include <tuple>
 #include <vector>
 
 #include <Eigen/Core>
@@ -18,7 +22,9 @@
 #include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/model.hpp"
+#include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
+#include "nodus/simulation/simulation.hpp"
 #include "nodus/solver/ordered_assembly.hpp"
 
 namespace nodus::simulation {
@@ -143,6 +149,49 @@ TEST(ParallelAssembly, ResidualAndTangentDoNotDependOnTheNumberOfThreads) {
   for (int threads : {2, 3}) expect_identical(serial, bundle.evaluate(threads), threads);
   // Twice on the same thread count: the buffers kept across calls carry nothing over.
   expect_identical(serial, bundle.evaluate(1), 1);
+  omp_set_num_threads(max_threads);
+}
+
+TEST(ParallelAssembly, ARunOnKluDoesNotDependOnTheNumberOfThreads) {
+  // A tool presses a rod of 300 elements on two supports and drags it with friction (the varying tangent,
+  // not symmetric, on KLU): steps, iterations and the final state are compared bit for bit.
+  const std::string text = R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: beam, material: nylon, radius: 0.1, length: 10, elements: 300, start: [-5, 0, 0],
+     direction: [1, 0, 0], director1: [0, 1, 0]}
+  - {name: tool, material: nylon, radius: 0.2, length: 2, elements: 4, start: [0, -1, 0.31],
+     direction: [0, 1, 0], director1: [1, 0, 0]}
+conditions:
+  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
+  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
+  - {name: press, type: rigid, beam: tool}
+stages:
+  - {name: press, steps: 3, motions: {press: {translation: [0, 0, -0.1]}}}
+  - {name: drag, steps: 4, motions: {press: {translation: [0, 0.3, -0.1]}}}
+contact: {self_contact: false, friction: 0.3, friction_tangent: varying}
+solver: {linear_solver: klu}
+)";
+  const int max_threads = omp_get_max_threads();
+  const auto run = [&](int threads) {
+    omp_set_num_threads(threads);
+    Simulation sim(scenario::parse_scenario(text, "drag.yaml"));
+    const RunSummary summary = sim.run({});
+    EXPECT_TRUE(summary.converged) << summary.failure;
+    return std::make_tuple(summary.steps, summary.newton_iterations, Eigen::VectorXd(sim.state()));
+  };
+  omp_set_num_threads(2);
+  EXPECT_GT(solver::assembly_buffers(300), 1u);  // the beam's elements are assembled on both threads
+  const auto one = run(1);
+  for (int threads : {2, 3}) {
+    const auto other = run(threads);
+    EXPECT_EQ(std::get<0>(other), std::get<0>(one)) << threads << " threads";
+    EXPECT_EQ(std::get<1>(other), std::get<1>(one)) << threads << " threads";
+    ASSERT_EQ(std::get<2>(other).size(), std::get<2>(one).size());
+    for (Eigen::Index i = 0; i < std::get<2>(one).size(); ++i)
+      ASSERT_TRUE(same_bits(std::get<2>(other)[i], std::get<2>(one)[i]))
+          << threads << " threads, unknown " << i;
+  }
   omp_set_num_threads(max_threads);
 }
 
