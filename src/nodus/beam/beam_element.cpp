@@ -11,6 +11,23 @@ namespace {
 
 using KinematicMap = Eigen::Matrix<double, kKinematicSize, kElementDofs>;
 
+/// The structure of the kinematic map B (y = B x_e at xi): each field of a node (its positions, d1, d2, at
+/// `offset` in the node's unknowns) enters the kinematic blocks listed, times the shape value N or its
+/// derivative dN/ds: r' = sum dN r, g_a = sum N d_a, g_a' = sum dN d_a. kinematic_map() and
+/// add_mapped_tangent() both read it.
+struct FieldBlock {
+  int block;        ///< first row of the kinematic block (KinematicBlock)
+  bool derivative;  ///< times dN/ds, else N
+};
+struct FieldMap {
+  int offset;  ///< of the field in the node's unknowns
+  int count;   ///< blocks used of `blocks`
+  FieldBlock blocks[2];
+};
+constexpr FieldMap kFieldMaps[] = {{0, 1, {{kRp, true}, {kRp, true}}},
+                                   {3, 2, {{kG1, false}, {kG1p, true}}},
+                                   {6, 2, {{kG2, false}, {kG2p, true}}}};
+
 /// B such that y = B x_e at xi.
 KinematicMap kinematic_map(double length, double xi) {
   const QuadraticShape shape = quadratic_shape(xi);
@@ -19,22 +36,18 @@ KinematicMap kinematic_map(double length, double xi) {
   for (int i = 0; i < kElementNodes; ++i) {
     const double n = shape.value[i];
     const double dn = shape.derivative[i] * dxi_ds;
-    const int c = kNodeDofs * i;
-    for (int d = 0; d < 3; ++d) {
-      b(kRp + d, c + d) = dn;
-      b(kG1 + d, c + 3 + d) = n;
-      b(kG2 + d, c + 6 + d) = n;
-      b(kG1p + d, c + 3 + d) = dn;
-      b(kG2p + d, c + 6 + d) = dn;
-    }
+    for (const FieldMap& f : kFieldMaps)
+      for (int j = 0; j < f.count; ++j)
+        b.block<3, 3>(f.blocks[j].block, kNodeDofs * i + f.offset)
+            .diagonal()
+            .setConstant(f.blocks[j].derivative ? dn : n);
   }
   return b;
 }
 
-/// tangent += w B^T K B for B = kinematic_map(length, xi), without multiplying by B's zeros: each 3-row block
-/// of B takes one field of each node times a shape value (r' the positions times dN; g1, g2 the directors
-/// times N; g1', g2' the directors times dN). About 2,300 multiplications instead of the 34,000 of the dense
-/// product: the element tangents were most of the flagship's assembly (docs/performance.md).
+/// tangent += w B^T K B for B = kinematic_map(length, xi), without multiplying by B's zeros (kFieldMaps):
+/// about 2,300 multiplications instead of the 34,000 of the dense product. The element tangents were most of
+/// the flagship's assembly (docs/performance.md).
 void add_mapped_tangent(double length, double xi, double w, const KinematicMatrix& k,
                         ElementMatrix& tangent) {
   const QuadraticShape shape = quadratic_shape(xi);
@@ -43,18 +56,23 @@ void add_mapped_tangent(double length, double xi, double w, const KinematicMatri
   for (int i = 0; i < kElementNodes; ++i) {
     const double n = shape.value[i];
     const double dn = shape.derivative[i] * dxi_ds;
-    const int c = kNodeDofs * i;
-    kb.middleCols<3>(c) = dn * k.middleCols<3>(kRp);
-    kb.middleCols<3>(c + 3) = n * k.middleCols<3>(kG1) + dn * k.middleCols<3>(kG1p);
-    kb.middleCols<3>(c + 6) = n * k.middleCols<3>(kG2) + dn * k.middleCols<3>(kG2p);
+    for (const FieldMap& f : kFieldMaps) {
+      auto column = kb.middleCols<3>(kNodeDofs * i + f.offset);
+      column = (f.blocks[0].derivative ? dn : n) * k.middleCols<3>(f.blocks[0].block);
+      for (int j = 1; j < f.count; ++j)
+        column += (f.blocks[j].derivative ? dn : n) * k.middleCols<3>(f.blocks[j].block);
+    }
   }
   for (int i = 0; i < kElementNodes; ++i) {
     const double n = w * shape.value[i];
     const double dn = w * shape.derivative[i] * dxi_ds;
-    const int c = kNodeDofs * i;
-    tangent.middleRows<3>(c) += dn * kb.middleRows<3>(kRp);
-    tangent.middleRows<3>(c + 3) += n * kb.middleRows<3>(kG1) + dn * kb.middleRows<3>(kG1p);
-    tangent.middleRows<3>(c + 6) += n * kb.middleRows<3>(kG2) + dn * kb.middleRows<3>(kG2p);
+    for (const FieldMap& f : kFieldMaps) {
+      Eigen::Matrix<double, 3, kElementDofs> row =
+          (f.blocks[0].derivative ? dn : n) * kb.middleRows<3>(f.blocks[0].block);
+      for (int j = 1; j < f.count; ++j)
+        row += (f.blocks[j].derivative ? dn : n) * kb.middleRows<3>(f.blocks[j].block);
+      tangent.middleRows<3>(kNodeDofs * i + f.offset) += row;
+    }
   }
 }
 
