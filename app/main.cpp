@@ -7,6 +7,7 @@
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
 //   nodus keys                            print the table of scenario keys (markdown)
 //   nodus knot NODES.csv                  knot type and smallest self-distance of a beam in a nodal table
+//                                         (--yarn NAME: of each fibre, of their mean and between fibres)
 //
 // Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
@@ -22,9 +23,11 @@
 #include <exception>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include <unistd.h>
 
+#include <fmt/format.h>
 #include <spdlog/spdlog.h>
 #include <CLI/CLI.hpp>
 
@@ -57,20 +60,60 @@ bool prefer_passive_openmp_wait(char** argv) {
   return false;
 }
 
-/// `nodus knot`: the knot type and the smallest self-distance of a beam's centreline in a nodal table.
-int knot(const std::string& path, const std::string& beam, double separation) {
-  const nodus::output::TableCurve c = nodus::output::read_table_curve(path, beam);
-  const nodus::analysis::KnotInvariant k = nodus::analysis::knot_invariant(c.points);
-  const nodus::analysis::SelfDistance d = nodus::analysis::min_self_distance(c.points, c.s, separation);
+/// The knot type of `curve` as one line.
+std::string knot_line(const std::vector<Eigen::Vector3d>& curve) {
+  const nodus::analysis::KnotInvariant k = nodus::analysis::knot_invariant(curve);
   const std::string name = k.is_unknot() ? "unknot" : k.is_trefoil() ? "trefoil" : "another knot";
-  std::printf("%s: beam %s, %zu nodes\n", path.c_str(), c.beam.c_str(), c.points.size());
-  std::printf("knot: Alexander polynomial %s (%s; determinant %lld; %d crossings in the projection used)\n",
-              k.to_string().c_str(), name.c_str(), static_cast<long long>(k.determinant()), k.crossings);
-  if (std::isfinite(d.distance))
-    std::printf(
-        "smallest distance %.6f mm, between s = %.4f and %.4f mm (points at least %g mm apart along "
-        "the beam; node polyline)\n",
-        d.distance, d.s1, d.s2, separation);
+  return fmt::format("Alexander polynomial {} ({}; determinant {}; {} crossings in the projection used)",
+                     k.to_string(), name, k.determinant(), k.crossings);
+}
+
+/// `nodus knot`: the knot type and the smallest self-distance of each beam's centreline in a nodal table;
+/// for several beams (the fibres of a yarn) also the knot type of their mean centreline and the smallest
+/// distance between each two of them.
+int knot(const std::string& path, std::vector<std::string> beams, const std::string& yarn,
+         double separation) {
+  if (!yarn.empty()) {
+    for (const std::string& name : nodus::output::read_table_beams(path))
+      if (name.rfind(yarn + ".", 0) == 0) beams.push_back(name);
+    if (beams.empty())
+      throw std::invalid_argument(fmt::format(
+          "{}: expected the fibres {}.rK.fJ of yarn {} in the table, got none", path, yarn, yarn));
+  }
+  if (beams.empty()) beams.push_back("");  // the first beam of the table
+  std::vector<nodus::output::TableCurve> curves;
+  for (const std::string& beam : beams) curves.push_back(nodus::output::read_table_curve(path, beam));
+  for (const nodus::output::TableCurve& c : curves) {
+    const nodus::analysis::SelfDistance d = nodus::analysis::min_self_distance(c.points, c.s, separation);
+    std::printf("%s: beam %s, %zu nodes\n", path.c_str(), c.beam.c_str(), c.points.size());
+    std::printf("knot: %s\n", knot_line(c.points).c_str());
+    if (std::isfinite(d.distance))
+      std::printf(
+          "smallest distance %.6f mm, between s = %.4f and %.4f mm (points at least %g mm apart along "
+          "the beam; node polyline)\n",
+          d.distance, d.s1, d.s2, separation);
+  }
+  if (curves.size() < 2) return 0;
+  std::vector<std::vector<Eigen::Vector3d>> points;
+  for (const nodus::output::TableCurve& c : curves) points.push_back(c.points);
+  std::vector<Eigen::Vector3d> mean;
+  try {
+    mean = nodus::analysis::mean_curve(points);
+  } catch (const std::invalid_argument&) {
+    throw std::invalid_argument(fmt::format(
+        "{}: expected beams of equal numbers of nodes (the fibres of a yarn), got {} and {} nodes", path,
+        curves.front().points.size(), std::find_if(curves.begin(), curves.end(), [&](const auto& c) {
+                                        return c.points.size() != curves.front().points.size();
+                                      })->points.size()));
+  }
+  std::printf("mean centreline of the %zu beams: knot: %s\n", curves.size(), knot_line(mean).c_str());
+  for (std::size_t i = 0; i < curves.size(); ++i)
+    for (std::size_t j = i + 1; j < curves.size(); ++j) {
+      const nodus::analysis::CurveDistance d =
+          nodus::analysis::min_distance_between(curves[i].points, curves[i].s, curves[j].points, curves[j].s);
+      std::printf("smallest distance %.6f mm between beams %s (s = %.4f mm) and %s (s = %.4f mm)\n",
+                  d.distance, curves[i].beam.c_str(), d.s1, curves[j].beam.c_str(), d.s2);
+    }
   return 0;
 }
 
@@ -116,14 +159,19 @@ int main(int argc, char** argv) {
 
   app.add_subcommand("keys", "print the table of scenario keys (markdown)");
 
-  std::string nodes_path, knot_beam;
+  std::string nodes_path, knot_yarn;
+  std::vector<std::string> knot_beams;
   double separation = 1.2;
-  CLI::App* knot_cmd = app.add_subcommand(
-      "knot",
-      "knot type (Alexander polynomial, the curve closed far away) and smallest self-distance of a beam");
+  CLI::App* knot_cmd = app.add_subcommand("knot",
+                                          "knot type (Alexander polynomial, the curve closed far away) and "
+                                          "smallest self-distance of a beam, or of "
+                                          "the fibres of a yarn and their mean centreline");
   knot_cmd->add_option("nodes", nodes_path, "nodal table (final_nodes.csv or stages/NNN_STAGE_nodes.csv)")
       ->required();
-  knot_cmd->add_option("--beam", knot_beam, "beam name (default: the first beam of the table)");
+  knot_cmd->add_option("--beam", knot_beams,
+                       "beam name, repeatable (default: the first beam of the table); with several, also the "
+                       "knot type of their mean centreline and the smallest distance between each two");
+  knot_cmd->add_option("--yarn", knot_yarn, "yarn name: as --beam for each of its fibres NAME.rK.fJ");
   knot_cmd
       ->add_option("--separation", separation,
                    "smallest distance between points at least this far apart along the beam [mm]")
@@ -149,7 +197,7 @@ int main(int argc, char** argv) {
     }
     if (app.got_subcommand("knot")) {
       try {
-        return knot(nodes_path, knot_beam, separation);
+        return knot(nodes_path, knot_beams, knot_yarn, separation);
       } catch (const std::invalid_argument& e) {
         std::fprintf(stderr, "nodus: %s\n", e.what());
         return kBadInput;

@@ -30,7 +30,7 @@ from ._nodus import ScenarioError, RunOutcome  # noqa: E402
 __version__ = _nodus.version
 
 __all__ = ["Scenario", "ScenarioError", "RunOutcome", "Simulation", "run", "keys", "strain_names",
-           "contact_states", "knot_invariant", "min_self_distance", "knot_metrics", "tail_angle", "fit_circle",
+           "contact_states", "knot_invariant", "min_self_distance", "min_distance_between", "knot_metrics", "tail_angle", "fit_circle",
            "rod_radius", "__version__"]
 
 #: Names of the 15 strain measures, in the order of the columns of Simulation.element_strains().
@@ -328,6 +328,12 @@ def min_self_distance(points, arc_length, separation):
     """(distance, s1, s2): the smallest distance [mm] between two points of the polyline `points` whose
     reference arc lengths `arc_length` differ by at least `separation` [mm]."""
     return _nodus.min_self_distance(points, arc_length, separation)
+
+
+def min_distance_between(points1, arc_length1, points2, arc_length2):
+    """(distance, s1, s2): the smallest distance [mm] between the polylines `points1` and `points2` (two fibres),
+    and the reference arc lengths of its ends on each (`arc_length1`, `arc_length2` of their vertices)."""
+    return _nodus.min_distance_between(points1, arc_length1, points2, arc_length2)
 
 
 

@@ -162,6 +162,17 @@ void bind_analysis(py::module_& m) {
       },
       py::arg("points"), py::arg("arc_length"), py::arg("separation"));
   m.def(
+      "min_distance_between",
+      [](const py::array_t<double, py::array::c_style | py::array::forcecast>& points1,
+         const std::vector<double>& arc_length1,
+         const py::array_t<double, py::array::c_style | py::array::forcecast>& points2,
+         const std::vector<double>& arc_length2) {
+        const analysis::CurveDistance d =
+            analysis::min_distance_between(points_of(points1), arc_length1, points_of(points2), arc_length2);
+        return py::make_tuple(d.distance, d.s1, d.s2);
+      },
+      py::arg("points1"), py::arg("arc_length1"), py::arg("points2"), py::arg("arc_length2"));
+  m.def(
       "analyse_knot",
       [](const DoubleArray& points, const DoubleArray& arc_length, const py::dict& contact, double tail_chord,
          double min_spacing, int min_loop_nodes) {

@@ -519,6 +519,83 @@ TEST(MinSelfDistance, StraightLineAndLimits) {
   EXPECT_THROW(min_self_distance(c, s, 1.0), std::invalid_argument);
 }
 
+// --- Distance between two fibres; the mean centreline of a yarn ------------------------------------------
+
+TEST(MinDistanceBetween, SkewLines) {
+  // Line 1 along x at z = 0, line 2 along y at z = h; the closest points are the origins, which are no
+  // vertices (5 and 7 segments).
+  const double L = 3.0, h = 0.4;
+  Curve a{Vec3(-L, 0, 0)}, b{Vec3(0, -L, h)};
+  append_line(a, a.back(), Vec3(L, 0, 0), 5);
+  append_line(b, b.back(), Vec3(0, L, h), 7);
+  const CurveDistance d = min_distance_between(a, chord_lengths(a), b, chord_lengths(b));
+  EXPECT_NEAR(d.distance, h, 1e-14);
+  EXPECT_NEAR(d.s1, L, 1e-12);
+  EXPECT_NEAR(d.s2, L, 1e-12);
+  const CurveDistance swapped = min_distance_between(b, chord_lengths(b), a, chord_lengths(a));
+  EXPECT_EQ(swapped.distance, d.distance);
+  EXPECT_NEAR(swapped.s1, L, 1e-12);
+}
+
+TEST(MinDistanceBetween, TwoHelicesOfAThreePlyYarn) {
+  // Fibres k = 0, 1 of a 3-ply yarn: helices (c t, a cos(t + phi_k), a sin(t + phi_k)), phi_k = 2 pi k / 3.
+  // Points t1 on fibre 0 and t2 on fibre 1 are D apart, D^2 = c^2 d^2 + 2 a^2 (1 - cos(d - 2 pi / 3)) with
+  // d = t1 - t2: at d = 0 the distance sqrt(3) a across the section, and a little less at the d where
+  // c^2 d + a^2 sin(d - 2 pi / 3) = 0 (Newton's method).
+  const double a = 0.065, c = 2.0 / (2 * kPi), phi = 2 * kPi / 3, speed = std::sqrt(a * a + c * c);
+  double d = 0.0;
+  for (int it = 0; it < 50; ++it)
+    d -= (c * c * d + a * a * std::sin(d - phi)) / (c * c + a * a * std::cos(d - phi));
+  const double reference = std::sqrt(c * c * d * d + 2 * a * a * (1 - std::cos(d - phi)));
+  ASSERT_LT(reference, std::sqrt(3.0) * a - 1e-4);  // a real difference, well above the tolerance below
+  const auto helix = [&](double phase) {
+    Curve curve;
+    std::vector<double> s;
+    for (int i = 0; i <= 3000; ++i) {
+      const double t = 6 * kPi * i / 3000;
+      curve.emplace_back(c * t, a * std::cos(t + phase), a * std::sin(t + phase));
+      s.push_back(speed * t);
+    }
+    return std::pair{curve, s};
+  };
+  const auto [c0, s0] = helix(0.0);
+  const auto [c1, s1] = helix(phi);
+  const CurveDistance found = min_distance_between(c0, s0, c1, s1);
+  // The node polylines cut inside the helices by at most kappa ds^2 / 8 = 2e-7 mm.
+  EXPECT_NEAR(found.distance, reference, 1e-6);
+  EXPECT_NEAR((found.s1 - found.s2) / speed, d, 0.01);
+}
+
+TEST(MeanCurve, ThreeFibresAroundATrefoil) {
+  // Three fibres at 120 degrees about the trefoil K, r away in its normal planes: each fibre is a trefoil
+  // too, and their mean is K (the three offsets sum to zero).
+  const ClosedKnot knot = trefoil();
+  const Vec3 axis = Vec3(0.3, 0.5, 0.8).normalized();  // never along K' (checked)
+  const double r = 0.1;
+  const int n = 600;
+  std::vector<Curve> fibres(3);
+  Curve centre;
+  for (int i = 0; i <= n; ++i) {
+    const double t = 2 * kPi * i / n;
+    const Vec3 tangent = knot.derivative(t).normalized();
+    ASSERT_GT(tangent.cross(axis).norm(), 0.1);
+    const Vec3 u = tangent.cross(axis).normalized(), v = tangent.cross(u);
+    centre.push_back(knot.position(t));
+    for (int k = 0; k < 3; ++k) {
+      const double angle = 2 * kPi * k / 3 + 3 * t;  // the fibres also wind about K
+      fibres[static_cast<std::size_t>(k)].push_back(knot.position(t) +
+                                                    r * (std::cos(angle) * u + std::sin(angle) * v));
+    }
+  }
+  const Curve mean = mean_curve(fibres);
+  ASSERT_EQ(mean.size(), centre.size());
+  for (std::size_t i = 0; i < mean.size(); ++i) EXPECT_LT((mean[i] - centre[i]).norm(), 1e-14) << i;
+  EXPECT_TRUE(knot_invariant(mean).is_trefoil());
+  for (const Curve& fibre : fibres) EXPECT_TRUE(knot_invariant(fibre).is_trefoil());
+  EXPECT_THROW(mean_curve({}), std::invalid_argument);
+  EXPECT_THROW(mean_curve({centre, Curve(centre.begin(), centre.end() - 1)}), std::invalid_argument);
+}
+
 // --- Beam centreline --------------------------------------------------------------------------------------
 
 TEST(BeamCentreline, NodesOfOneBeamInOrder) {

@@ -17,6 +17,7 @@
 #include <numbers>
 #include <sstream>
 #include <string>
+#include <tuple>
 
 namespace {
 
@@ -96,6 +97,50 @@ TEST(KnotCommand, FindsTheUnknotAndTheGapOfAHairpin) {
   const auto [status_line, line] = knot(two, "--beam line");
   EXPECT_EQ(status_line, 0) << line;
   EXPECT_NE(line.find("beam line, 3 nodes"), std::string::npos) << line;
+}
+
+TEST(KnotCommand, ReportsEachFibreOfAYarnTheirMeanAndTheirDistances) {
+  // Three straight fibres y.r1.f1, y.r2.f1, y.r3.f1 along x at (y, z) = (0, 0), (0.5, 0), (0, 0.3), and a
+  // beam of another name: the fibres and their mean are unknots, the fibres 0.5, 0.3 and sqrt(0.34) apart.
+  const std::string header = "beam,node,s,x,y,z,g1x,g1y,g1z,g2x,g2y,g2z\n";
+  const auto line = [](double y, double z) { return [=](double u) { return Point{4 * u, y, z}; }; };
+  std::string text = table("y.r1.f1", 9, line(0, 0));
+  for (const auto& [name, y, z] :
+       {std::tuple{"y.r2.f1", 0.5, 0.0}, {"y.r3.f1", 0.0, 0.3}, {"other", 2.0, 0.0}})
+    text += table(name, 9, line(y, z)).substr(header.size());
+  const auto [status, out] = knot(text, "--yarn y");
+  EXPECT_EQ(status, 0) << out;
+  for (const char* fibre : {"beam y.r1.f1, 9 nodes", "beam y.r2.f1, 9 nodes", "beam y.r3.f1, 9 nodes"})
+    EXPECT_NE(out.find(fibre), std::string::npos) << out;
+  EXPECT_EQ(out.find("beam other"), std::string::npos) << out;
+  EXPECT_NE(out.find("mean centreline of the 3 beams: knot: Alexander polynomial 1 (unknot;"),
+            std::string::npos)
+      << out;
+  EXPECT_NE(out.find("smallest distance 0.500000 mm between beams y.r1.f1 (s = "), std::string::npos) << out;
+  EXPECT_NE(out.find("smallest distance 0.300000 mm between beams y.r1.f1 (s = "), std::string::npos) << out;
+  char diagonal[64];
+  std::snprintf(diagonal, sizeof diagonal, "smallest distance %.6f mm between beams y.r2.f1",
+                std::sqrt(0.34));
+  EXPECT_NE(out.find(diagonal), std::string::npos) << out;
+
+  // The same beams named one by one.
+  const auto [status_beams, beams] = knot(text, "--beam y.r1.f1 --beam other");
+  EXPECT_EQ(status_beams, 0) << beams;
+  EXPECT_NE(beams.find("smallest distance 2.000000 mm between beams y.r1.f1"), std::string::npos) << beams;
+
+  // No such yarn; fibres of unequal numbers of nodes.
+  const auto [status_none, none] = knot(text, "--yarn x");
+  EXPECT_EQ(status_none, 2);
+  EXPECT_NE(none.find("expected the fibres x.rK.fJ of yarn x in the table, got none"), std::string::npos)
+      << none;
+  const std::string uneven =
+      table("y.r1.f1", 9, line(0, 0)) + table("y.r2.f1", 5, line(0.5, 0)).substr(header.size());
+  const auto [status_uneven, message] = knot(uneven, "--yarn y");
+  EXPECT_EQ(status_uneven, 2);
+  EXPECT_NE(
+      message.find("expected beams of equal numbers of nodes (the fibres of a yarn), got 9 and 5 nodes"),
+      std::string::npos)
+      << message;
 }
 
 TEST(KnotCommand, BadTablesGiveOneLineAndStatus2) {

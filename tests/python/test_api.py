@@ -75,3 +75,22 @@ def names_from_dict(s):
 
 def test_keys_is_the_command_lines_table():
     assert nodus.keys() == run_cli("keys", check_status=0).stdout
+
+
+def test_distances_of_polylines_against_closed_forms():
+    """min_distance_between: two skew lines h apart, closest at their origins (no vertices); min_self_distance:
+    the same lines joined far away, with the separation larger than any pair on one line."""
+    np = pytest.importorskip("numpy")
+    h, n = 0.4, 6
+    a = np.column_stack([np.linspace(-3, 3, n), np.zeros(n), np.zeros(n)])
+    b = np.column_stack([np.zeros(n + 2), np.linspace(-3, 3, n + 2), np.full(n + 2, h)])
+    s_a, s_b = np.linspace(0, 6, n), np.linspace(0, 6, n + 2)
+    distance, s1, s2 = nodus.min_distance_between(a, s_a, b, s_b)
+    assert distance == pytest.approx(h, abs=1e-14)
+    assert (s1, s2) == (pytest.approx(3, abs=1e-12), pytest.approx(3, abs=1e-12))
+    joined = np.vstack([a, b[::-1]])  # a, then b from its far end: the connector joins (3, 0, 0) to (0, 3, h)
+    s_joined = np.concatenate([s_a, s_a[-1] + np.hypot(3, np.hypot(3, h)) + s_b])
+    distance, s1, s2 = nodus.min_self_distance(joined, s_joined, 7.0)
+    assert distance == pytest.approx(h, abs=1e-14)
+    with pytest.raises(ValueError):
+        nodus.min_distance_between(a, s_a[:-1], b, s_b)

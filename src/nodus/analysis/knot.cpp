@@ -553,6 +553,47 @@ SelfDistance min_self_distance(const std::vector<Eigen::Vector3d>& curve,
   return best;
 }
 
+CurveDistance min_distance_between(const std::vector<Eigen::Vector3d>& curve1,
+                                   const std::vector<double>& arc_length1,
+                                   const std::vector<Eigen::Vector3d>& curve2,
+                                   const std::vector<double>& arc_length2) {
+  if (curve1.size() != arc_length1.size() || curve2.size() != arc_length2.size())
+    throw std::invalid_argument("min_distance_between: a curve and its arc lengths differ in size");
+  CurveDistance best{std::numeric_limits<double>::infinity(), 0.0, 0.0};
+  if (curve1.size() < 2 || curve2.size() < 2) return best;
+  const auto boxes = [](const std::vector<Eigen::Vector3d>& curve) {
+    std::vector<Eigen::AlignedBox3d> out(curve.size() - 1);
+    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
+      out[i] = Eigen::AlignedBox3d(curve[i]).extend(curve[i + 1]);
+    return out;
+  };
+  const std::vector<Eigen::AlignedBox3d> boxes1 = boxes(curve1), boxes2 = boxes(curve2);
+  for (std::size_t i = 0; i < boxes1.size(); ++i) {
+    for (std::size_t j = 0; j < boxes2.size(); ++j) {
+      if (boxes1[i].squaredExteriorDistance(boxes2[j]) >= best.distance * best.distance) continue;
+      const Vec3 &p0 = curve1[i], &p1 = curve1[i + 1], &q0 = curve2[j], &q1 = curve2[j + 1];
+      const auto [a, b] = closest_parameters(p0, p1, q0, q1);
+      const double distance = (p0 + a * (p1 - p0) - q0 - b * (q1 - q0)).norm();
+      if (distance < best.distance)
+        best = {distance, arc_length1[i] + a * (arc_length1[i + 1] - arc_length1[i]),
+                arc_length2[j] + b * (arc_length2[j + 1] - arc_length2[j])};
+    }
+  }
+  return best;
+}
+
+std::vector<Eigen::Vector3d> mean_curve(const std::vector<std::vector<Eigen::Vector3d>>& fibres) {
+  if (fibres.empty()) throw std::invalid_argument("mean_curve: no fibres");
+  std::vector<Eigen::Vector3d> mean(fibres.front().size(), Eigen::Vector3d::Zero());
+  for (const auto& fibre : fibres) {
+    if (fibre.size() != mean.size())
+      throw std::invalid_argument("mean_curve: the fibres differ in their numbers of vertices");
+    for (std::size_t k = 0; k < mean.size(); ++k) mean[k] += fibre[k];
+  }
+  for (Eigen::Vector3d& p : mean) p /= static_cast<double>(fibres.size());
+  return mean;
+}
+
 Centreline beam_centreline(const model::Model& model, const Eigen::VectorXd& state, int beam,
                            int segments_per_element) {
   if (state.size() != model.num_dofs())

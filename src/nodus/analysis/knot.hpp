@@ -81,6 +81,27 @@ struct SelfDistance {
 SelfDistance min_self_distance(const std::vector<Eigen::Vector3d>& curve,
                                const std::vector<double>& arc_length, double separation);
 
+/// Where two curves come closest.
+struct CurveDistance {
+  double distance = 0.0;  ///< [mm]; +infinity when either curve has fewer than two vertices
+  double s1 = 0.0;        ///< reference arc length of the point on the first curve [mm]
+  double s2 = 0.0;        ///< reference arc length of the point on the second curve [mm]
+};
+
+/// Smallest distance [mm] between the polylines `curve1` and `curve2` [mm] (two fibres of a yarn), each with
+/// the reference arc length of its vertices (`arc_length1`, `arc_length2`, interpolated linearly along each
+/// segment). Each pair of segments is solved exactly; pairs whose boxes are farther apart than the best
+/// distance so far are skipped. Throws std::invalid_argument if a curve and its arc lengths differ in size.
+CurveDistance min_distance_between(const std::vector<Eigen::Vector3d>& curve1,
+                                   const std::vector<double>& arc_length1,
+                                   const std::vector<Eigen::Vector3d>& curve2,
+                                   const std::vector<double>& arc_length2);
+
+/// The mean centreline of a yarn: vertex k is the mean of vertex k of every curve of `fibres`. The fibres of
+/// a yarn have equal numbers of nodes, laid side by side along the yarn axis (docs/yarns.md). Throws
+/// std::invalid_argument if `fibres` is empty or the curves differ in their numbers of vertices.
+std::vector<Eigen::Vector3d> mean_curve(const std::vector<std::vector<Eigen::Vector3d>>& fibres);
+
 /// The nodes of one beam in order along it.
 struct Centreline {
   std::vector<Eigen::Vector3d> points;  ///< current node positions r [mm]

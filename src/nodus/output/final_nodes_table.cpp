@@ -1,5 +1,6 @@
 #include "nodus/output/final_nodes_table.hpp"
 
+#include <algorithm>
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -46,24 +47,50 @@ std::vector<std::string> split_row(const std::string& line) {
   return cells;
 }
 
-}  // namespace
+const std::vector<std::string> kTableColumns{"beam", "node", "s", "x", "y", "z"};
 
-TableCurve read_table_curve(const std::filesystem::path& path, const std::string& beam) {
+[[noreturn]] void fail_table(const std::filesystem::path& path, int line, const std::string& expected,
+                             const std::string& got) {
+  throw std::invalid_argument(fmt::format("{}:{}: expected {}, got {}", path.string(), line, expected, got));
+}
+
+/// Opens a nodal table and reads its header; throws on a missing file or another header.
+std::ifstream open_table(const std::filesystem::path& path) {
   std::ifstream in(path);
   if (!in)
     throw std::invalid_argument(
         fmt::format("{}: expected a readable nodal table (final_nodes.csv), got none", path.string()));
-  const auto fail = [&](int line, const std::string& expected, const std::string& got) {
-    throw std::invalid_argument(
-        fmt::format("{}:{}: expected {}, got {}", path.string(), line, expected, got));
-  };
   std::string line;
-  if (!std::getline(in, line)) fail(1, "the header beam,node,s,x,y,z,...", "an empty file");
+  if (!std::getline(in, line)) fail_table(path, 1, "the header beam,node,s,x,y,z,...", "an empty file");
   const std::vector<std::string> header = split_row(line);
-  const std::vector<std::string> wanted{"beam", "node", "s", "x", "y", "z"};
-  if (header.size() < wanted.size() || !std::equal(wanted.begin(), wanted.end(), header.begin()))
-    fail(1, "the header beam,node,s,x,y,z,...",
-         "'" + (line.size() > 60 ? line.substr(0, 60) + "...'" : line + "'"));
+  if (header.size() < kTableColumns.size() ||
+      !std::equal(kTableColumns.begin(), kTableColumns.end(), header.begin()))
+    fail_table(path, 1, "the header beam,node,s,x,y,z,...",
+               "'" + (line.size() > 60 ? line.substr(0, 60) + "...'" : line + "'"));
+  return in;
+}
+
+}  // namespace
+
+std::vector<std::string> read_table_beams(const std::filesystem::path& path) {
+  std::ifstream in = open_table(path);
+  std::vector<std::string> beams;
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.empty()) continue;
+    const std::string name = split_row(line).front();
+    if (std::find(beams.begin(), beams.end(), name) == beams.end()) beams.push_back(name);
+  }
+  return beams;
+}
+
+TableCurve read_table_curve(const std::filesystem::path& path, const std::string& beam) {
+  std::ifstream in = open_table(path);
+  const auto fail = [&](int line, const std::string& expected, const std::string& got) {
+    fail_table(path, line, expected, got);
+  };
+  const std::vector<std::string>& wanted = kTableColumns;
+  std::string line;
   TableCurve curve;
   curve.beam = beam;
   int number = 1;

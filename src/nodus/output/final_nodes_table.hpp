@@ -35,4 +35,8 @@ struct TableCurve {
 /// nodes).
 TableCurve read_table_curve(const std::filesystem::path& path, const std::string& beam = "");
 
+/// The names of the beams of a nodal table, in the order of their first rows. Throws as read_table_curve on a
+/// file that is not such a table (no readable file, another header).
+std::vector<std::string> read_table_beams(const std::filesystem::path& path);
+
 }  // namespace nodus::output
