@@ -118,12 +118,30 @@ void ContactLoops::install(contact::ContactGeometry next) {
 
 double ContactLoops::update_normals() {
   double turn = 0.0;
-  for (contact::ContactElement& e : problem_.contact_geometry().elements) {
+  largest_turn_element_ = -1;
+  std::vector<contact::ContactElement>& elements = problem_.contact_geometry().elements;
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    contact::ContactElement& e = elements[k];
     const Eigen::Vector3d before = e.normal;
-    if (contact::update_normal(model_, problem_.state(), e, laws_.facing_particles))
-      turn = std::max(turn, std::atan2(before.cross(e.normal).norm(), before.dot(e.normal)));
+    if (!contact::update_normal(model_, problem_.state(), e, laws_.facing_particles)) continue;
+    const double angle = std::atan2(before.cross(e.normal).norm(), before.dot(e.normal));
+    if (angle > turn) {
+      turn = angle;
+      largest_turn_element_ = static_cast<int>(k);
+    }
   }
   return turn;
+}
+
+std::string ContactLoops::largest_turn_where() const {
+  const contact::ContactGeometry& g = problem_.contact_geometry();
+  if (largest_turn_element_ < 0 || static_cast<std::size_t>(largest_turn_element_) >= g.elements.size())
+    return "no element";
+  const contact::ContactElement& e = g.elements[static_cast<std::size_t>(largest_turn_element_)];
+  const contact::ProximityZone& zone = g.zones[static_cast<std::size_t>(e.zone)];
+  return fmt::format("element {} (zone {}, beams {} at s = {:.4f} mm and {} at s = {:.4f} mm, gap {:.2e} mm)",
+                     largest_turn_element_, e.zone, model_.beam(zone.beam_i).name(), e.particle_i.abscissa,
+                     model_.beam(zone.beam_j).name(), e.particle_j.abscissa, e.gap);
 }
 
 bool ContactLoops::adjust_penalties() {
@@ -204,8 +222,8 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
             laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
       return true;
     }
-    spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad{}", turn,
-                  off ? ", penalties adjusted" : "");
+    spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad, most at {}{}", turn,
+                  largest_turn_where(), off ? "; penalties adjusted" : "");
   }
 }
 
@@ -249,8 +267,8 @@ bool ContactLoops::solve_normals_inside_newton(solver::NewtonReport& total) {
       return false;
     }
     ++updates;
-    spdlog::debug("contact loop 3: at a converged state normals turned by up to {:.2e} rad{}", turn,
-                  off ? ", penalties adjusted" : "");
+    spdlog::debug("contact loop 3: at a converged state normals turned by up to {:.2e} rad, most at {}{}",
+                  turn, largest_turn_where(), off ? "; penalties adjusted" : "");
     return true;
   };
   const solver::NewtonReport r = newton_.solve(problem_, update);

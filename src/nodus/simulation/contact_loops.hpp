@@ -10,6 +10,7 @@
 
 #include <functional>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "nodus/contact/contact_mechanics.hpp"
@@ -100,6 +101,9 @@ class ContactLoops {
   /// Updates the normals in the current state; returns the largest turn [rad]. Costs O(contact elements):
   /// each update reads only the two beam elements that carry its particles.
   double update_normals();
+  /// For the debug log: where the last update_normals() turned a normal most, as "element K (zone Z, beams
+  /// I at s = ... mm and J at s = ... mm)".
+  std::string largest_turn_where() const;
   /// Adjusts the penalty of each zone whose largest penetration is outside [p_max / 2, p_max] so that it
   /// approaches 3/4 p_max (Eq. 54); returns true if it adjusted one.
   bool adjust_penalties();
@@ -107,6 +111,7 @@ class ContactLoops {
 
   const model::Model& model_;
   EquilibriumProblem& problem_;
+  int largest_turn_element_ = -1;  ///< of the last update_normals(); -1: none turned
   solver::NewtonSolver& newton_;
   contact::DetectionParameters detection_;
   std::vector<int> beams_;
