@@ -168,9 +168,11 @@ int main(int argc, char** argv) {
                                           "the fibres of a yarn and their mean centreline");
   knot_cmd->add_option("nodes", nodes_path, "nodal table (final_nodes.csv or stages/NNN_STAGE_nodes.csv)")
       ->required();
-  knot_cmd->add_option("--beam", knot_beams,
-                       "beam name, repeatable (default: the first beam of the table); with several, also the "
-                       "knot type of their mean centreline and the smallest distance between each two");
+  knot_cmd
+      ->add_option("--beam", knot_beams,
+                   "beam name, repeatable (default: the first beam of the table); with several, also the "
+                   "knot type of their mean centreline and the smallest distance between each two")
+      ->allow_extra_args(false);  // one name per --beam: `--beam a TABLE.csv` leaves the table positional
   knot_cmd->add_option("--yarn", knot_yarn, "yarn name: as --beam for each of its fibres NAME.rK.fJ");
   knot_cmd
       ->add_option("--separation", separation,
