@@ -139,9 +139,12 @@ std::string ContactLoops::largest_turn_where() const {
     return "no element";
   const contact::ContactElement& e = g.elements[static_cast<std::size_t>(largest_turn_element_)];
   const contact::ProximityZone& zone = g.zones[static_cast<std::size_t>(e.zone)];
-  return fmt::format("element {} (zone {}, beams {} at s = {:.4f} mm and {} at s = {:.4f} mm, gap {:.2e} mm)",
-                     largest_turn_element_, e.zone, model_.beam(zone.beam_i).name(), e.particle_i.abscissa,
-                     model_.beam(zone.beam_j).name(), e.particle_j.abscissa, e.gap);
+  return fmt::format(
+      "element {} (zone {}, beams {} at s = {:.4f} mm and {} at s = {:.4f} mm, gap {:.2e} mm, parallel "
+      "weight "
+      "{:.2f})",
+      largest_turn_element_, e.zone, model_.beam(zone.beam_i).name(), e.particle_i.abscissa,
+      model_.beam(zone.beam_j).name(), e.particle_j.abscissa, e.gap, e.parallel_weight);
 }
 
 bool ContactLoops::adjust_penalties() {

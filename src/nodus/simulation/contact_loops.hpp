@@ -102,7 +102,7 @@ class ContactLoops {
   /// each update reads only the two beam elements that carry its particles.
   double update_normals();
   /// For the debug log: where the last update_normals() turned a normal most, as "element K (zone Z, beams
-  /// I at s = ... mm and J at s = ... mm)".
+  /// I at s = ... mm and J at s = ... mm, gap ..., parallel weight ...)".
   std::string largest_turn_where() const;
   /// Adjusts the penalty of each zone whose largest penetration is outside [p_max / 2, p_max] so that it
   /// approaches 3/4 p_max (Eq. 54); returns true if it adjusted one.
