@@ -95,17 +95,14 @@ int knot(const std::string& path, std::vector<std::string> beams, const std::str
   }
   if (curves.size() < 2) return 0;
   std::vector<std::vector<Eigen::Vector3d>> points;
-  for (const nodus::output::TableCurve& c : curves) points.push_back(c.points);
-  std::vector<Eigen::Vector3d> mean;
-  try {
-    mean = nodus::analysis::mean_curve(points);
-  } catch (const std::invalid_argument&) {
-    throw std::invalid_argument(fmt::format(
-        "{}: expected beams of equal numbers of nodes (the fibres of a yarn), got {} and {} nodes", path,
-        curves.front().points.size(), std::find_if(curves.begin(), curves.end(), [&](const auto& c) {
-                                        return c.points.size() != curves.front().points.size();
-                                      })->points.size()));
+  for (const nodus::output::TableCurve& c : curves) {
+    if (c.points.size() != curves.front().points.size())
+      throw std::invalid_argument(fmt::format(
+          "{}: expected beams of equal numbers of nodes (the fibres of a yarn), got {} and {} nodes", path,
+          curves.front().points.size(), c.points.size()));
+    points.push_back(c.points);
   }
+  const std::vector<Eigen::Vector3d> mean = nodus::analysis::mean_curve(points);
   std::printf("mean centreline of the %zu beams: knot: %s\n", curves.size(), knot_line(mean).c_str());
   for (std::size_t i = 0; i < curves.size(); ++i)
     for (std::size_t j = i + 1; j < curves.size(); ++j) {

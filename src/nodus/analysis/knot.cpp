@@ -505,6 +505,14 @@ std::array<double, 2> closest_parameters(const Vec3& p0, const Vec3& p1, const V
   return {s, t};
 }
 
+/// The bounding box of each segment of the polyline `curve`.
+std::vector<Eigen::AlignedBox3d> segment_boxes(const std::vector<Eigen::Vector3d>& curve) {
+  std::vector<Eigen::AlignedBox3d> boxes(curve.size() < 2 ? 0 : curve.size() - 1);
+  for (std::size_t i = 0; i < boxes.size(); ++i)
+    boxes[i] = Eigen::AlignedBox3d(curve[i]).extend(curve[i + 1]);
+  return boxes;
+}
+
 }  // namespace
 
 SelfDistance min_self_distance(const std::vector<Eigen::Vector3d>& curve,
@@ -516,9 +524,8 @@ SelfDistance min_self_distance(const std::vector<Eigen::Vector3d>& curve,
     if (!(arc_length[i] > arc_length[i - 1]))
       throw std::invalid_argument("min_self_distance: arc_length must be strictly increasing");
   SelfDistance best{std::numeric_limits<double>::infinity(), 0.0, 0.0};
-  const std::size_t segments = curve.size() < 2 ? 0 : curve.size() - 1;
-  std::vector<Eigen::AlignedBox3d> boxes(segments);
-  for (std::size_t i = 0; i < segments; ++i) boxes[i] = Eigen::AlignedBox3d(curve[i]).extend(curve[i + 1]);
+  const std::vector<Eigen::AlignedBox3d> boxes = segment_boxes(curve);
+  const std::size_t segments = boxes.size();
   const auto& s = arc_length;
 
   for (std::size_t i = 0; i < segments; ++i) {
@@ -560,14 +567,7 @@ CurveDistance min_distance_between(const std::vector<Eigen::Vector3d>& curve1,
   if (curve1.size() != arc_length1.size() || curve2.size() != arc_length2.size())
     throw std::invalid_argument("min_distance_between: a curve and its arc lengths differ in size");
   CurveDistance best{std::numeric_limits<double>::infinity(), 0.0, 0.0};
-  if (curve1.size() < 2 || curve2.size() < 2) return best;
-  const auto boxes = [](const std::vector<Eigen::Vector3d>& curve) {
-    std::vector<Eigen::AlignedBox3d> out(curve.size() - 1);
-    for (std::size_t i = 0; i + 1 < curve.size(); ++i)
-      out[i] = Eigen::AlignedBox3d(curve[i]).extend(curve[i + 1]);
-    return out;
-  };
-  const std::vector<Eigen::AlignedBox3d> boxes1 = boxes(curve1), boxes2 = boxes(curve2);
+  const std::vector<Eigen::AlignedBox3d> boxes1 = segment_boxes(curve1), boxes2 = segment_boxes(curve2);
   for (std::size_t i = 0; i < boxes1.size(); ++i) {
     for (std::size_t j = 0; j < boxes2.size(); ++j) {
       if (boxes1[i].squaredExteriorDistance(boxes2[j]) >= best.distance * best.distance) continue;

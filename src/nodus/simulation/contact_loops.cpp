@@ -140,9 +140,8 @@ std::string ContactLoops::largest_turn_where() const {
   const contact::ContactElement& e = g.elements[static_cast<std::size_t>(largest_turn_element_)];
   const contact::ProximityZone& zone = g.zones[static_cast<std::size_t>(e.zone)];
   return fmt::format(
-      "element {} (zone {}, beams {} at s = {:.4f} mm and {} at s = {:.4f} mm, gap {:.2e} mm, parallel "
-      "weight "
-      "{:.2f})",
+      "element {} (zone {}, beams {} at s = {:.4f} mm and {} at s = {:.4f} mm, gap {:.2e} mm, "
+      "parallel weight {:.2f})",
       largest_turn_element_, e.zone, model_.beam(zone.beam_i).name(), e.particle_i.abscissa,
       model_.beam(zone.beam_j).name(), e.particle_j.abscissa, e.gap, e.parallel_weight);
 }
@@ -225,8 +224,9 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
             laws_.max_normal_iterations, turn, off ? ", and penalties would still be adjusted" : "");
       return true;
     }
-    spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad, most at {}{}", turn,
-                  largest_turn_where(), off ? "; penalties adjusted" : "");
+    if (spdlog::should_log(spdlog::level::debug))
+      spdlog::debug("contact loop 3: normals turned by up to {:.2e} rad, most at {}{}", turn,
+                    largest_turn_where(), off ? "; penalties adjusted" : "");
   }
 }
 
@@ -270,8 +270,9 @@ bool ContactLoops::solve_normals_inside_newton(solver::NewtonReport& total) {
       return false;
     }
     ++updates;
-    spdlog::debug("contact loop 3: at a converged state normals turned by up to {:.2e} rad, most at {}{}",
-                  turn, largest_turn_where(), off ? "; penalties adjusted" : "");
+    if (spdlog::should_log(spdlog::level::debug))
+      spdlog::debug("contact loop 3: at a converged state normals turned by up to {:.2e} rad, most at {}{}",
+                    turn, largest_turn_where(), off ? "; penalties adjusted" : "");
     return true;
   };
   const solver::NewtonReport r = newton_.solve(problem_, update);
