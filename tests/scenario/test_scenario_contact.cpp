@@ -274,6 +274,27 @@ TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
             "knot.yaml:26: contact.friction_tangent: expected one of frozen | varying, got exact");
 }
 
+TEST(ScenarioContact, LinearizedNormalsWithLu) {
+  EXPECT_EQ(parse("contact: {}\n").contact.normal_updates, NormalUpdates::nested);
+  EXPECT_EQ(
+      parse("contact: {normal_updates: linearized}\nsolver: {linear_solver: klu}\n").contact.normal_updates,
+      NormalUpdates::linearized);
+  EXPECT_EQ(parse("contact: {normal_updates: inside_newton}\n").contact.normal_updates,
+            NormalUpdates::inside_newton);
+}
+
+TEST(ScenarioContactErrors, LinearizedNormalsNeedLu) {
+  const std::string expected =
+      "contact.normal_updates: expected nested or inside_newton with solver.linear_solver: cholmod (the "
+      "linearized normals' tangent is not symmetric and needs LU: set solver.linear_solver: umfpack, mumps "
+      "or "
+      "klu), got linearized";
+  EXPECT_EQ(error_of("contact:\n  normal_updates: linearized\n"), "knot.yaml:26: " + expected);
+  EXPECT_EQ(error_of("contact:\n  normal_updates: exact\n"),
+            "knot.yaml:26: contact.normal_updates: expected one of nested | inside_newton | linearized, got "
+            "exact");
+}
+
 TEST(ScenarioContactErrors, UnknownBeam) {
   EXPECT_EQ(error_of("contact:\n  beams: [rod, rdo]\n"),
             "knot.yaml:26: contact.beams[1]: expected the name of a beam (rod | strand | wire), got rdo");

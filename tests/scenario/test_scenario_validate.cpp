@@ -183,6 +183,16 @@ TEST(ScenarioValidate, ChecksAcrossKeysGiveTheReadersMessage) {
     EXPECT_NE(validate_message(s).find("t.yaml: contact.friction_tangent: expected frozen"),
               std::string::npos);
   }
+  {  // the linearized normals need LU
+    Scenario s = base();
+    s.solver.linear_solver = LinearSolverKind::cholmod;
+    s.contact.normal_updates = NormalUpdates::linearized;
+    std::string yaml = with_value("solver:", "linear_solver", "cholmod");
+    yaml += "  normal_updates: linearized\n";
+    EXPECT_EQ(validate_message(s), reader_message(yaml));
+    EXPECT_NE(validate_message(s).find("t.yaml: contact.normal_updates: expected nested or inside_newton"),
+              std::string::npos);
+  }
   {  // matching intervals must overlap
     Scenario s = base();
     s.contact.matching_length = 0.1;

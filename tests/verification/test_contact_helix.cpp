@@ -40,8 +40,9 @@ constexpr double kPull = 0.02;  // axial pull delta [mm]: 0.1 % strain
 constexpr double kTurns = 1.0;  // end rotation Phi = 2 pi kTurns
 
 /// The solution strategy, which must not change the answer: the paper's nested loop 3 with a factorisation
-/// per Newton iteration, loop 3 inside Newton with the factor kept across iterations (GMRES on it), or the
-/// nested loop whose solves before the last stop at 1e-2 of the normal force (contact.normal_pass_residual).
+/// per Newton iteration, loop 3 inside Newton with the factor kept across iterations (GMRES on it), the
+/// nested loop whose solves before the last stop at 1e-2 of the normal force (contact.normal_pass_residual),
+/// or the normals linearised in Newton's tangent (contact.normal_updates: linearized, an LU solver).
 struct Strategy {
   const char* name;
   const char* contact;  ///< contact section
@@ -52,6 +53,7 @@ const Strategy kStrategies[] = {
     {"InsideNewtonLaggedFactor", "{self_contact: false, normal_updates: inside_newton}",
      "{reuse_factor: true}"},
     {"NestedShortPasses", "{self_contact: false, normal_pass_residual: 0.01}", "{}"},
+    {"Linearized", "{self_contact: false, normal_updates: linearized}", "{linear_solver: klu}"},
 };
 
 /// Two strands of length L side by side along x, clamped at x = 0; their sections at x = L are pulled by

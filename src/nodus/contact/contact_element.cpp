@@ -2,17 +2,12 @@
 
 #include <algorithm>
 #include <cmath>
-#include <numbers>
 
 #include "nodus/contact/contact_mechanics.hpp"
+#include "nodus/contact/normal_direction.hpp"
 
 namespace nodus::contact {
 namespace {
-
-/// The normal is the cross product of the tangents (Eq. 42) above this crossing angle, the double cross
-/// product (Eq. 44) below kParallelBelow, and a smooth blend of the two between (docs/contact.md).
-const double kSinParallelBelow = std::sin(5.0 * std::numbers::pi / 180.0);
-const double kSinCrossAbove = std::sin(15.0 * std::numbers::pi / 180.0);
 
 double clamp_to(double s, double length) {
   return std::clamp(s, 0.0, length);
@@ -60,38 +55,15 @@ Particle make_particle(int beam, double s, const SectionGeometry& g, const Eigen
   return {beam, g.element, g.local, s, transverse};
 }
 
-double smoothstep(double t) {
-  t = std::clamp(t, 0.0, 1.0);
-  return t * t * (3.0 - 2.0 * t);
-}
-
 /// The direction d between the section centres (Eq. 37) and the normal (Eq. 41-44), oriented from I towards
 /// J, of the sections `gi` and `gj`; false if neither is defined (coincident centres of parallel axes).
 bool section_normal(const SectionGeometry& gi, const SectionGeometry& gj, double length_scale,
                     Eigen::Vector3d& d, Eigen::Vector3d& normal, double& parallel_weight) {
-  const Eigen::Vector3d centres = gj.r - gi.r;
-  const Eigen::Vector3d t_i = gi.dr.normalized();
-  Eigen::Vector3d t_j = gj.dr.normalized();
-  if (t_i.dot(t_j) < 0.0) t_j = -t_j;  // antiparallel parts: compare like with like
-  const Eigen::Vector3d cross = t_i.cross(t_j);
-  const double sin_angle = cross.norm();
-  if (centres.norm() > 1e-12 * length_scale) {
-    d = centres.normalized();
-  } else if (sin_angle > 0.0) {
-    d = cross / sin_angle;  // the axes meet: the common normal is the only candidate
-  } else {
-    return false;
-  }
-  const double w = smoothstep((sin_angle - kSinParallelBelow) / (kSinCrossAbove - kSinParallelBelow));
-  Eigen::Vector3d n_cross = Eigen::Vector3d::Zero();
-  if (sin_angle > 0.0) n_cross = (cross.dot(d) < 0.0 ? -cross : cross) / sin_angle;
-  const Eigen::Vector3d t_mean = (t_i + t_j).normalized();
-  Eigen::Vector3d n_parallel = d - d.dot(t_mean) * t_mean;
-  if (n_parallel.norm() > 0.0) n_parallel.normalize();
-  normal = w * n_cross + (1.0 - w) * n_parallel;
-  if (!(normal.norm() > 1e-12)) return false;
-  normal.normalize();
-  parallel_weight = 1.0 - w;
+  NormalDirection n;
+  if (!normal_direction(gi.r, gi.dr, gj.r, gj.dr, 1e-12 * length_scale, n)) return false;
+  d = n.d;
+  normal = n.normal;
+  parallel_weight = n.parallel_weight;
   return true;
 }
 

@@ -1,6 +1,7 @@
 #include "nodus/contact/contact_mechanics.hpp"
 
 #include "nodus/beam/shape_functions.hpp"
+#include "nodus/contact/normal_direction.hpp"
 
 namespace nodus::contact {
 
@@ -35,6 +36,7 @@ struct Facing {
   Particle particle;
   Eigen::Matrix2d curvature = Eigen::Matrix2d::Zero();  ///< R / |w| (I - u u^T)
   Eigen::Vector3d shape = Eigen::Vector3d::Zero();
+  Eigen::Matrix<double, 3, 2> directors = Eigen::Matrix<double, 3, 2>::Zero();  ///< G = [g1 g2]
 };
 
 Facing facing(const Particle& p, const beam::ElementVector& q, const Eigen::Vector3d& direction) {
@@ -52,10 +54,48 @@ Facing facing(const Particle& p, const beam::ElementVector& q, const Eigen::Vect
   Eigen::Vector2d xi;
   if (!facing_point(g1, g2, direction, radius, xi)) return f;
   f.particle.transverse = xi;
+  f.directors << g1, g2;
   const Eigen::Vector2d w(g1.dot(direction), g2.dot(direction));
   const Eigen::Vector2d u = w.normalized();
   f.curvature = (radius / w.norm()) * (Eigen::Matrix2d::Identity() - u * u.transpose());
   return f;
+}
+
+using NormalMap = Eigen::Matrix<double, 3, 2 * beam::kElementDofs>;
+
+/// The normal of `e` in the current state (q_i, q_j), at its particles' abscissas, and its derivative with
+/// respect to (q_i, q_j); false (nothing written) where it is undefined.
+bool current_normal(const ContactElement& e, const beam::ElementVector& q_i, const beam::ElementVector& q_j,
+                    Eigen::Vector3d& normal, NormalMap& derivative) {
+  // Axis position and derivative along the element coordinate (only the tangent's direction counts).
+  const auto axis = [](const Particle& p, const beam::ElementVector& q, Eigen::Vector3d& r,
+                       Eigen::Vector3d& dr, beam::QuadraticShape& shape) {
+    shape = beam::quadratic_shape(p.local);
+    r.setZero();
+    dr.setZero();
+    for (int k = 0; k < beam::kElementNodes; ++k) {
+      r += shape.value[static_cast<std::size_t>(k)] * q.segment<3>(beam::kNodeDofs * k);
+      dr += shape.derivative[static_cast<std::size_t>(k)] * q.segment<3>(beam::kNodeDofs * k);
+    }
+  };
+  Eigen::Vector3d r_i, dr_i, r_j, dr_j;
+  beam::QuadraticShape s_i, s_j;
+  axis(e.particle_i, q_i, r_i, dr_i, s_i);
+  axis(e.particle_j, q_j, r_j, dr_j, s_j);
+  NormalDirection n;
+  NormalJacobian jacobian;
+  const double centre_tolerance = 1e-12 * (e.particle_i.transverse.norm() + e.particle_j.transverse.norm());
+  if (!normal_direction(r_i, dr_i, r_j, dr_j, centre_tolerance, n, jacobian)) return false;
+  normal = n.normal;
+  derivative.setZero();
+  for (int k = 0; k < beam::kElementNodes; ++k) {
+    const auto node = static_cast<std::size_t>(k);
+    derivative.block<3, 3>(0, beam::kNodeDofs * k) =
+        s_i.value[node] * jacobian.block<3, 3>(0, 0) + s_i.derivative[node] * jacobian.block<3, 3>(0, 3);
+    derivative.block<3, 3>(0, beam::kElementDofs + beam::kNodeDofs * k) =
+        s_j.value[node] * jacobian.block<3, 3>(0, 6) + s_j.derivative[node] * jacobian.block<3, 3>(0, 9);
+  }
+  return true;
 }
 
 }  // namespace
@@ -85,13 +125,16 @@ void contact_response(const ContactElement& e, const beam::ElementVector& q_i, c
   // turns the section further: a torsional stiffness -R R_N per particle, which in a tightened knot outweighs
   // the rod's torsional stiffness, so that every detection (particles put back facing) twisted the knot back
   // and forth.
-  const Facing f_i = options.facing_particles ? facing(e.particle_i, q_i, e.normal) : Facing{e.particle_i};
-  const Facing f_j = options.facing_particles ? facing(e.particle_j, q_j, -e.normal) : Facing{e.particle_j};
+  Eigen::Vector3d nrm = e.normal;
+  NormalMap dn;
+  const bool linearized = options.linearized_normal && current_normal(e, q_i, q_j, nrm, dn);
+  r.normal = nrm;
+  const Facing f_i = options.facing_particles ? facing(e.particle_i, q_i, nrm) : Facing{e.particle_i};
+  const Facing f_j = options.facing_particles ? facing(e.particle_j, q_j, -nrm) : Facing{e.particle_j};
   const ParticleMap b_i = particle_map(f_i.particle), b_j = particle_map(f_j.particle);
   // Relative position of the particles, x_J - x_I = C (q_I, q_J) with C = [-B_I, B_J] (Eq. 65-67).
   Eigen::Matrix<double, 3, 2 * n> c;
   c << -b_i, b_j;
-  const Eigen::Vector3d& nrm = e.normal;
   r.gap = nrm.dot(b_j * q_j - b_i * q_i);  // Eq. 45 with the particles and the normal fixed
   r.normal_reaction = normal_reaction(normal, r.gap);
   Mat3 stiffness = normal_stiffness(normal, r.gap) * nrm * nrm.transpose();
@@ -131,6 +174,33 @@ void contact_response(const ContactElement& e, const beam::ElementVector& q_i, c
     };
     add(0, f_i);
     add(n, f_j);
+  }
+  if (linearized && r.normal_reaction > 0.0) {
+    // The normal follows the state: force_on_j = R_N(gap) n (+ friction) with n = n(q) and gap = <x_J - x_I,
+    // n(q)>, so d force_on_j gains (R_N I - k_N m (x_J - x_I)^T) dn, with m = n, or force_on_j / R_N where
+    // the friction force's dependence on R_N is linearised (its projection's turn with n is left out).
+    // With facing particles, the facing points also move along the borders as n turns: xi = R w / |w|, w =
+    // G^T (+-n), so that d xi / dn = +-curvature G^T, and B^T F (on I; -B^T F on J) gains N_k F (curvature
+    // G^T)_a dn in the rows of director a of node k, on both sides alike.
+    const double k_n = normal_stiffness(normal, r.gap);
+    const Eigen::Vector3d relative = b_j * q_j - b_i * q_i;
+    const Eigen::Vector3d m =
+        options.friction_normal_coupling ? Eigen::Vector3d(force_on_j / r.normal_reaction) : nrm;
+    const NormalMap dforce = r.normal_reaction * dn - k_n * m * (relative.transpose() * dn);
+    r.tangent -= c.transpose() * dforce;
+    if (options.facing_particles) {
+      const Eigen::Vector3d applied =
+          options.friction_normal_coupling ? force_on_j : Eigen::Vector3d(r.normal_reaction * nrm);
+      const auto add = [&](int offset, const Facing& f) {
+        const Eigen::Matrix<double, 2, 2 * n> dxi = f.curvature * (f.directors.transpose() * dn);
+        for (int k = 0; k < beam::kElementNodes; ++k)
+          for (int a = 0; a < 2; ++a)
+            r.tangent.block<3, 2 * n>(offset + beam::kNodeDofs * k + 3 + 3 * a, 0) +=
+                f.shape[k] * applied * dxi.row(a);
+      };
+      add(0, f_i);
+      add(n, f_j);
+    }
   }
 }
 

@@ -31,7 +31,9 @@ struct ContactResponse {
   double normal_reaction = 0.0;             ///< R_N [N]
   FrictionResponse friction;                ///< tangential part (zero without friction)
   PairVector force = PairVector::Zero();    ///< contribution to f_int - f_ext, unknowns (q_I, q_J)
-  PairMatrix tangent = PairMatrix::Zero();  ///< its derivative (normal and particles fixed)
+  PairMatrix tangent = PairMatrix::Zero();  ///< its derivative (normal and particles fixed unless the options
+                                            ///< say otherwise)
+  Eigen::Vector3d normal = Eigen::Vector3d::UnitZ();  ///< the normal used (the element's, or the state's)
 };
 
 /// How contact_response places the particles and linearises friction.
@@ -44,11 +46,17 @@ struct ResponseOptions {
   /// Add to the tangent the derivative of the friction force through R_N (not symmetric: needs an LU solver).
   /// Off: R_N held fixed in the friction tangent (the paper's simplification, Sect. 5.3).
   bool friction_normal_coupling = false;
+  /// The normal is recomputed from the current state at every evaluation, at the particles' abscissas (Eq.
+  /// 41-44, as update_normal does), and its derivative enters the tangent (not symmetric: needs an LU
+  /// solver). The friction force's turn with the normal (its projection on the tangent plane) is left out of
+  /// the tangent. Off: the normal of the contact element, fixed during Newton (the paper's loop 3).
+  bool linearized_normal = false;
 };
 
-/// Evaluates the contact element `e` (normal fixed) for the element unknowns q_i, q_j (current)
-/// and q_i_committed, q_j_committed (at the committed state, for the friction increment). `friction` may be
-/// null (frictionless). `reversible_committed` is the element's committed g_rev.
+/// Evaluates the contact element `e` (normal fixed, unless options.linearized_normal) for the element
+/// unknowns q_i, q_j (current) and q_i_committed, q_j_committed (at the committed state, for the friction
+/// increment). `friction` may be null (frictionless). `reversible_committed` is the element's committed
+/// g_rev.
 ContactResponse contact_response(const ContactElement& e, const beam::ElementVector& q_i,
                                  const beam::ElementVector& q_j, const beam::ElementVector& q_i_committed,
                                  const beam::ElementVector& q_j_committed, const NormalLaw& normal,

@@ -59,6 +59,10 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       scenario.solver.linear_solver == LinearSolverKind::cholmod) {
     reader.fail(*MapView(reader, *top.get("contact")).get("friction_tangent"), kFrictionTangentExpected);
   }
+  if (scenario.contact.normal_updates == NormalUpdates::linearized &&
+      scenario.solver.linear_solver == LinearSolverKind::cholmod) {
+    reader.fail(*MapView(reader, *top.get("contact")).get("normal_updates"), kLinearizedNormalsExpected);
+  }
   scenario.output = read_output(reader, top);
   scenario.branches =
       read_branches(reader, top, stage_names, load_values_after, condition_names, scenario.conditions,

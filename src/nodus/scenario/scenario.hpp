@@ -573,6 +573,13 @@ enum class FrictionTangent {
   varying,  ///< the exact derivative, R_N varying: not symmetric, needs LU (umfpack, mumps or klu)
 };
 
+/// How loop 3 of the global algorithm finds the normals (contact.normal_updates; docs/contact.md).
+enum class NormalUpdates {
+  nested,         ///< the paper's: a Newton solve to convergence after every update of the normals
+  inside_newton,  ///< the normals updated between Newton iterations, held fixed in the tangent
+  linearized,     ///< the normals are functions of the state, linearised in the tangent (not symmetric)
+};
+
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
 /// penalty) of 0 means "auto": derived from the radii and element lengths when the simulation starts (the
 /// library takes any value <= 0 so; validate() refuses negative ones, as the reader does).
@@ -597,8 +604,7 @@ struct ContactSettings {
   /// paper's fixed material particles (fixed).
   bool facing_particles = false;
   int max_detections = 4;  ///< loop 2: detections of contact elements per step, >= 1
-  /// Loop 3 inside Newton (contact.normal_updates: inside_newton); false: the paper's nested loop.
-  bool normals_inside_newton = false;
+  NormalUpdates normal_updates = NormalUpdates::nested;  ///< loop 3 (contact.normal_updates)
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
   double normal_tolerance = 1e-3;  ///< loop 3 stops when no normal turns by more than this [rad], > 0
   /// Nested loop 3: its Newton solves stop at |R| <= this fraction of the total normal force, the last one at
@@ -689,13 +695,16 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
                "loop 2 of the global algorithm (Sect. 6): at most this many detections of the "
                "contact elements per load step"),
       K::choice(
-          "contact.normal_updates", "nested | inside_newton",
-          [](const ContactSettings& c) { return c.normals_inside_newton ? 1 : 0; },
-          [](ContactSettings& c, int i) { c.normals_inside_newton = i == 1; },
+          "contact.normal_updates", "nested | inside_newton | linearized",
+          [](const ContactSettings& c) { return static_cast<int>(c.normal_updates); },
+          [](ContactSettings& c, int i) { c.normal_updates = static_cast<NormalUpdates>(i); },
           "loop 3 of the global algorithm. nested: the paper's, a Newton solve to convergence "
           "after every update of the normals and penalties. inside_newton: the normals follow "
           "the iterates within one Newton solve, the penalties are adjusted at its converged "
-          "states (docs/contact.md)"),
+          "states. linearized: the normals are functions of the state at every iterate, their "
+          "derivative in the tangent (quadratic convergence where the nested loop's fixed point "
+          "diverges; not symmetric: needs solver.linear_solver: umfpack, mumps or klu), the "
+          "penalties adjusted at converged states (docs/contact.md)"),
       K::whole("contact.max_normal_iterations", &ContactSettings::max_normal_iterations, ">= 1",
                ranges::at_least_one,
                "loop 3: at most this many updates of the normal directions and penalties per "

@@ -42,6 +42,11 @@ constexpr std::string_view kFrictionTangentExpected =
     "frozen with solver.linear_solver: cholmod (the varying tangent is not symmetric and needs LU: "
     "set solver.linear_solver: umfpack, mumps or klu)";
 
+// The same for the normals linearised in the tangent.
+constexpr std::string_view kLinearizedNormalsExpected =
+    "nested or inside_newton with solver.linear_solver: cholmod (the linearized normals' tangent is not "
+    "symmetric and needs LU: set solver.linear_solver: umfpack, mumps or klu)";
+
 /// The word of the file for a condition type: clamp, motion, rigid, load.
 std::string_view type_name(ConditionType type);
 

@@ -474,6 +474,9 @@ void check_contact(const Checker& check, const Scenario& s) {
   if (contact.friction_tangent == FrictionTangent::varying &&
       s.solver.linear_solver == LinearSolverKind::cholmod)
     check.fail("contact.friction_tangent", kFrictionTangentExpected, "varying");
+  if (contact.normal_updates == NormalUpdates::linearized &&
+      s.solver.linear_solver == LinearSolverKind::cholmod)
+    check.fail("contact.normal_updates", kLinearizedNormalsExpected, "linearized");
 }
 
 /// Whether a branch name can be a folder name: letters, digits, '_', '.', '-', not starting with '.'.

@@ -93,8 +93,9 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
       detection_(detection),
       beams_(std::move(beams)),
       laws_(laws) {
-  problem_.set_contact_laws(laws_.regularization, laws_.friction,
-                            {laws_.facing_particles, laws_.friction_normal_coupling});
+  problem_.set_contact_laws(
+      laws_.regularization, laws_.friction,
+      {laws_.facing_particles, laws_.friction_normal_coupling, laws_.linearized_normals});
 }
 
 contact::ContactGeometry ContactLoops::detect() {

@@ -37,6 +37,10 @@ struct ContactLawSettings {
   /// converged state, the penalties only there; false: the paper's nested loop, a Newton solve to convergence
   /// after every update.
   bool normals_inside_newton = false;
+  /// The normals are functions of the state at every Newton iterate, linearised in the tangent
+  /// (contact.normal_updates: linearized; not symmetric, needs an LU solver). Loop 3 is then the nested one,
+  /// whose updates turn the normals by rounding only: it adjusts the penalties.
+  bool linearized_normals = false;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]
   /// Nested loop 3: the Newton solves between updates stop at |R| <= this fraction of the total normal force

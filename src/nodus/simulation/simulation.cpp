@@ -182,14 +182,17 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
   laws.max_detections = c.max_detections;
-  laws.normals_inside_newton = c.normals_inside_newton;
+  laws.normals_inside_newton = c.normal_updates == scenario::NormalUpdates::inside_newton;
+  // Not symmetric either: LU only, as above.
+  laws.linearized_normals = c.normal_updates == scenario::NormalUpdates::linearized;
   laws.max_normal_iterations = c.max_normal_iterations;
   laws.normal_tolerance = c.normal_tolerance;
   laws.normal_pass_residual = c.normal_pass_residual;
   return laws;
 }
 
-/// `symmetric`: whether the tangent is (everything but the varying friction tangent); MUMPS then factorises
+/// `symmetric`: whether the tangent is (everything but the varying friction tangent and the linearized
+/// normals); MUMPS then factorises
 /// one triangle by LDL^T, and the whole matrix by LU otherwise.
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, bool symmetric) {
   switch (kind) {
@@ -310,8 +313,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   RunSummary summary;
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
-  auto linear = solver::make_linear_solver(
-      linear_solver_kind(scenario_.solver.linear_solver, !laws_.friction_normal_coupling));
+  auto linear = solver::make_linear_solver(linear_solver_kind(
+      scenario_.solver.linear_solver, !laws_.friction_normal_coupling && !laws_.linearized_normals));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;
