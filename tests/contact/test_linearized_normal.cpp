@@ -169,13 +169,30 @@ TEST(NormalDirection, DerivativeMatchesFiniteDifferencesInEachRegime) {
 }
 
 /// The element's force and tangent with the normal following the state (frictionless).
-ContactResponse respond(const Crossing& c, const PairVector& x, bool facing) {
+ContactResponse respond(const Crossing& c, const PairVector& x, bool facing, bool linearized = true,
+                        bool centre_facing = false) {
   ResponseOptions options;
   options.facing_particles = facing;
-  options.linearized_normal = true;
+  options.linearized_normal = linearized;
+  options.centre_facing = centre_facing;
   const NormalLaw law{kPenalty, kRegularization};
   return contact_response(c.e, x.head<kElementDofs>(), x.tail<kElementDofs>(), x.head<kElementDofs>(),
                           x.tail<kElementDofs>(), law, nullptr, Vec3::Zero(), options);
+}
+
+/// Central differences of f at q, h = 1e-7 mm against distances to the law's joints >= 4e-3 mm and lengths
+/// >= 0.05 mm: truncation ~ (h / 0.05)^2 relative, rounding ~ 1e-16 / h.
+template <class F>
+PairMatrix finite_difference(const PairVector& q, F&& f) {
+  const double h = 1e-7;
+  PairMatrix fd;
+  for (int m = 0; m < kPairDofs; ++m) {
+    PairVector plus = q, minus = q;
+    plus[m] += h;
+    minus[m] -= h;
+    fd.col(m) = (f(plus) - f(minus)) / (2.0 * h);
+  }
+  return fd;
 }
 
 TEST(LinearizedNormal, TangentIsTheDerivativeOfTheForce) {
@@ -196,16 +213,8 @@ TEST(LinearizedNormal, TangentIsTheDerivativeOfTheForce) {
             contact_response(c.e, c.q_i, c.q_j, c.q_i, c.q_j, {kPenalty, kRegularization}, nullptr,
                              Vec3::Zero(), fixed_options);
         EXPECT_LT((r.force - fixed.force).cwiseAbs().maxCoeff(), 1e-12 * fixed.force.cwiseAbs().maxCoeff());
-        // Central differences, h = 1e-7 mm against distances to the law's joints >= 4e-3 mm and lengths
-        // >= 0.05 mm: truncation ~ (h / 0.05)^2 relative, rounding ~ 1e-16 / h.
-        const double h = 1e-7;
-        PairMatrix fd;
-        for (int m = 0; m < kPairDofs; ++m) {
-          PairVector plus = q, minus = q;
-          plus[m] += h;
-          minus[m] -= h;
-          fd.col(m) = (respond(c, plus, facing).force - respond(c, minus, facing).force) / (2.0 * h);
-        }
+        const PairMatrix fd =
+            finite_difference(q, [&](const PairVector& x) { return respond(c, x, facing).force; });
         const double scale = fd.cwiseAbs().maxCoeff();
         ASSERT_GT(scale, 0.0);
         EXPECT_LT((r.tangent - fd).cwiseAbs().maxCoeff(), 1e-6 * scale)
@@ -217,6 +226,74 @@ TEST(LinearizedNormal, TangentIsTheDerivativeOfTheForce) {
     }
   }
   EXPECT_EQ(compared, 3 * 2 * 2);
+}
+
+/// Particles facing each other along the centres' direction (ResponseOptions::centre_facing): the tangent
+/// is the derivative of the force, the particles moving with the centres and the directors, with the normal
+/// held fixed and with the normal following the state.
+TEST(CentreFacing, TangentIsTheDerivativeOfTheForce) {
+  std::mt19937 rng(73);
+  int compared = 0;
+  for (const Regime& regime : kRegimes) {
+    for (const double gap : {-0.4 * kRegularization, -2.5 * kRegularization}) {
+      for (const bool linearized : {false, true}) {
+        const Crossing c = crossing(rng, regime.angle, gap);
+        const PairVector q = c.q();
+        const ContactResponse r = respond(c, q, true, linearized, true);
+        ASSERT_LT(r.gap, 0.0) << regime.name;
+        const PairMatrix fd = finite_difference(
+            q, [&](const PairVector& x) { return respond(c, x, true, linearized, true).force; });
+        const double scale = fd.cwiseAbs().maxCoeff();
+        ASSERT_GT(scale, 0.0);
+        EXPECT_LT((r.tangent - fd).cwiseAbs().maxCoeff(), 1e-6 * scale)
+            << regime.name << ", gap " << gap << (linearized ? ", linearized" : ", fixed normal");
+        ++compared;
+      }
+    }
+  }
+  EXPECT_EQ(compared, 3 * 2 * 2);
+}
+
+/// Two straight beams crossing at right angles, I along x through the origin, J along y at height D: the
+/// sections at x = u on I and y = v on J, off the crossing. Along the normal (e_z) the facing points sit a
+/// full radius towards each other wherever the sections are, so that the gap is D - R_I - R_J all along the
+/// zone; along the centres' direction the gap is D - R_I D / hypot(v, D) - R_J D / hypot(u, D) (the
+/// closed form of the detection's elements, docs/contact.md), which grows away from the crossing.
+TEST(CentreFacing, GapGrowsAwayFromACrossingWhereTheNormalsFacingPointsDoNot) {
+  const double r_i = 0.1, r_j = 0.08, depth = 0.17, h = 0.05;
+  ContactElement e;
+  e.normal = Vec3::UnitZ();
+  ElementVector q_i, q_j;
+  for (int k = 0; k < 3; ++k) {
+    q_i.segment<3>(9 * k) = Vec3((k - 1) * h, 0.0, 0.0);
+    q_i.segment<3>(9 * k + 3) = Vec3::UnitY();
+    q_i.segment<3>(9 * k + 6) = Vec3::UnitZ();
+    q_j.segment<3>(9 * k) = Vec3(0.0, (k - 1) * h, depth);
+    q_j.segment<3>(9 * k + 3) = Vec3::UnitX();
+    q_j.segment<3>(9 * k + 6) = Vec3::UnitZ();
+  }
+  const NormalLaw law{kPenalty, kRegularization};
+  int compared = 0;
+  for (const double u : {0.0, 0.02, 0.04}) {
+    for (const double v : {0.0, 0.03}) {
+      e.particle_i = {0, 0, u / h, 0.0, Eigen::Vector2d(0.0, r_i)};
+      e.particle_j = {1, 1, v / h, 0.0, Eigen::Vector2d(0.0, -r_j)};
+      ResponseOptions along_normal;
+      along_normal.facing_particles = true;
+      ResponseOptions along_centres = along_normal;
+      along_centres.centre_facing = true;
+      const ContactResponse a =
+          contact_response(e, q_i, q_j, q_i, q_j, law, nullptr, Vec3::Zero(), along_normal);
+      const ContactResponse b =
+          contact_response(e, q_i, q_j, q_i, q_j, law, nullptr, Vec3::Zero(), along_centres);
+      EXPECT_NEAR(a.gap, depth - r_i - r_j, 1e-14) << u << " " << v;
+      EXPECT_NEAR(b.gap, depth - r_i * depth / std::hypot(v, depth) - r_j * depth / std::hypot(u, depth),
+                  1e-14)
+          << u << " " << v;
+      compared += 2;
+    }
+  }
+  EXPECT_EQ(compared, 12);
 }
 
 }  // namespace

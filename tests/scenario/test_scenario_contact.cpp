@@ -274,6 +274,18 @@ TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
             "knot.yaml:26: contact.friction_tangent: expected one of frozen | varying, got exact");
 }
 
+TEST(ScenarioContact, ParticlesFacingAlongTheCentres) {
+  const ContactSettings fixed = parse("contact: {particles: fixed}\n").contact;
+  EXPECT_FALSE(fixed.facing_particles);
+  EXPECT_FALSE(fixed.centre_facing);
+  const ContactSettings facing = parse("contact: {particles: facing}\n").contact;
+  EXPECT_TRUE(facing.facing_particles);
+  EXPECT_FALSE(facing.centre_facing);
+  const ContactSettings centres = parse("contact: {particles: centres}\n").contact;
+  EXPECT_TRUE(centres.facing_particles);
+  EXPECT_TRUE(centres.centre_facing);
+}
+
 TEST(ScenarioContact, LinearizedNormalsWithLu) {
   EXPECT_EQ(parse("contact: {}\n").contact.normal_updates, NormalUpdates::nested);
   EXPECT_EQ(
@@ -340,7 +352,7 @@ TEST(ScenarioContactErrors, NonPositivePenaltyAndMechanicsLengths) {
   EXPECT_EQ(error_of("contact:\n  max_penetration: 0\n"),
             "knot.yaml:26: contact.max_penetration: expected a number > 0 or auto (mm), got 0");
   EXPECT_EQ(error_of("contact:\n  particles: moving\n"),
-            "knot.yaml:26: contact.particles: expected one of fixed | facing, got moving");
+            "knot.yaml:26: contact.particles: expected one of fixed | facing | centres, got moving");
   EXPECT_EQ(error_of("contact:\n  regularization: -1e-4\n"),
             "knot.yaml:26: contact.regularization: expected a number > 0 or auto (mm), got -1e-4");
   EXPECT_EQ(error_of("contact:\n  beams: [rod]\n  max_reversible_slip: 0\n"),
@@ -572,6 +584,7 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.max_reversible_slip, b.max_reversible_slip) << section;
     EXPECT_EQ(a.friction_tangent, b.friction_tangent) << section;
     EXPECT_EQ(a.facing_particles, b.facing_particles) << section;
+    EXPECT_EQ(a.centre_facing, b.centre_facing) << section;
     EXPECT_EQ(a.max_detections, b.max_detections) << section;
     EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;
     EXPECT_EQ(a.normal_tolerance, b.normal_tolerance) << section;

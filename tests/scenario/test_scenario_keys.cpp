@@ -200,6 +200,7 @@ TEST(ScenarioKeys, LibraryDefaultsEqualTheScenarioDefaults) {
   EXPECT_EQ(laws.max_normal_iterations, contact.max_normal_iterations);
   EXPECT_EQ(laws.normal_tolerance, contact.normal_tolerance);
   EXPECT_EQ(laws.facing_particles, contact.facing_particles);
+  EXPECT_EQ(laws.centre_facing, contact.centre_facing);
   EXPECT_EQ(laws.friction_normal_coupling, contact.friction_tangent == FrictionTangent::varying);
   EXPECT_FALSE(laws.friction.has_value());  // no friction, as contact.friction = 0
   EXPECT_EQ(contact.friction, 0.0);

@@ -155,15 +155,17 @@ bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, con
   return make_element(BeamCurves(model, x), zone, zeta, out);
 }
 
-bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e, bool facing) {
+bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e, bool facing,
+                   bool along_centres) {
   const BeamCurves curves(model, x);
   const SectionGeometry gi = curves.at_element(e.particle_i.element, e.particle_i.local);
   const SectionGeometry gj = curves.at_element(e.particle_j.element, e.particle_j.local);
   Eigen::Vector3d d;
   if (!section_normal(gi, gj, curves.length(e.particle_i.beam), d, e.normal, e.parallel_weight)) return false;
   if (facing) {
-    facing_point(gi.g1, gi.g2, e.normal, curves.radius(e.particle_i.beam), e.particle_i.transverse);
-    facing_point(gj.g1, gj.g2, -e.normal, curves.radius(e.particle_j.beam), e.particle_j.transverse);
+    const Eigen::Vector3d direction = along_centres ? d : e.normal;
+    facing_point(gi.g1, gi.g2, direction, curves.radius(e.particle_i.beam), e.particle_i.transverse);
+    facing_point(gj.g1, gj.g2, -direction, curves.radius(e.particle_j.beam), e.particle_j.transverse);
   }
   const Eigen::Vector2d& a = e.particle_i.transverse;
   const Eigen::Vector2d& b = e.particle_j.transverse;

@@ -55,9 +55,11 @@ bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, con
 /// Recomputes, in state `x`, the normal of contact element `e` for its particles as they are (Eq. 41-44; the
 /// fixed point on normal directions of Sect. 6), with its positions and gap. False if it is undefined.
 /// With `facing`, the particles are first moved, at their abscissas, to the points of their sections' borders
-/// that face each other along the new normal (as contact_response places them with facing_particles).
-/// Reads only the two elements that carry the particles: its cost does not depend on the size of the model.
+/// that face each other along the new normal (as contact_response places them with facing_particles), or,
+/// with `along_centres` too, along the direction between the section centres
+/// (ResponseOptions::centre_facing). Reads only the two elements that carry the particles: its cost does not
+/// depend on the size of the model.
 bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e,
-                   bool facing = false);
+                   bool facing = false, bool along_centres = false);
 
 }  // namespace nodus::contact

@@ -1,5 +1,8 @@
 #include "nodus/contact/contact_mechanics.hpp"
 
+#include <Eigen/Geometry>
+#include <unsupported/Eigen/AutoDiff>
+
 #include "nodus/beam/shape_functions.hpp"
 #include "nodus/contact/normal_direction.hpp"
 
@@ -98,6 +101,165 @@ bool current_normal(const ContactElement& e, const beam::ElementVector& q_i, con
   return true;
 }
 
+/// The section of a particle's abscissa in state q: axis position, its derivative along the element
+/// coordinate, the directors, and the shape functions there.
+struct Section {
+  Eigen::Vector3d r = Eigen::Vector3d::Zero(), dr = Eigen::Vector3d::Zero();
+  Eigen::Vector3d g1 = Eigen::Vector3d::Zero(), g2 = Eigen::Vector3d::Zero();
+  beam::QuadraticShape shape{};
+};
+
+Section section_at(const Particle& p, const beam::ElementVector& q) {
+  Section s;
+  s.shape = beam::quadratic_shape(p.local);
+  for (int k = 0; k < beam::kElementNodes; ++k) {
+    const double v = s.shape.value[static_cast<std::size_t>(k)];
+    const double dv = s.shape.derivative[static_cast<std::size_t>(k)];
+    s.r += v * q.segment<3>(beam::kNodeDofs * k);
+    s.dr += dv * q.segment<3>(beam::kNodeDofs * k);
+    s.g1 += v * q.segment<3>(beam::kNodeDofs * k + 3);
+    s.g2 += v * q.segment<3>(beam::kNodeDofs * k + 6);
+  }
+  return s;
+}
+
+/// The derivative of a quantity with respect to the 24 section quantities (r, dr, g1, g2 of I, then of J),
+/// carried to the 54 element unknowns (q_I, q_J) through the shape functions.
+template <int Rows>
+Eigen::Matrix<double, Rows, 2 * beam::kElementDofs> to_unknowns(const Eigen::Matrix<double, Rows, 24>& d,
+                                                                const Section& s_i, const Section& s_j) {
+  Eigen::Matrix<double, Rows, 2 * beam::kElementDofs> out;
+  out.setZero();
+  for (int side = 0; side < 2; ++side) {
+    const Section& s = side == 0 ? s_i : s_j;
+    for (int k = 0; k < beam::kElementNodes; ++k) {
+      const double v = s.shape.value[static_cast<std::size_t>(k)];
+      const double dv = s.shape.derivative[static_cast<std::size_t>(k)];
+      const int col = beam::kElementDofs * side + beam::kNodeDofs * k, in = 12 * side;
+      out.template middleCols<3>(col) =
+          v * d.template middleCols<3>(in) + dv * d.template middleCols<3>(in + 3);
+      out.template middleCols<3>(col + 3) = v * d.template middleCols<3>(in + 6);
+      out.template middleCols<3>(col + 6) = v * d.template middleCols<3>(in + 9);
+    }
+  }
+  return out;
+}
+
+/// The particles facing each other along the direction between the section centres, and the gap along the
+/// normal, with their derivatives with respect to the element unknowns.
+struct CentreFacing {
+  Eigen::Vector2d xi_i, xi_j;  ///< transverse coordinates of the particles
+  double gap = 0.0;
+  Eigen::Matrix<double, 2, 2 * beam::kElementDofs> dxi_i, dxi_j;
+  Eigen::Matrix<double, 1, 2 * beam::kElementDofs> dgap;
+};
+
+/// `normal` and its derivative `dn` (zero for a normal held fixed) with respect to the element unknowns.
+CentreFacing centre_facing(const ContactElement& e, const Section& s_i, const Section& s_j,
+                           const Eigen::Vector3d& normal, const NormalMap& dn) {
+  using Ad = Eigen::AutoDiffScalar<Eigen::Matrix<double, 24, 1>>;
+  using V3 = Eigen::Matrix<Ad, 3, 1>;
+  const auto seed = [](const Eigen::Vector3d& v, int first) {
+    V3 a;
+    for (int k = 0; k < 3; ++k) a[k] = Ad(v[k], 24, first + k);
+    return a;
+  };
+  const V3 r_i = seed(s_i.r, 0), g1_i = seed(s_i.g1, 6), g2_i = seed(s_i.g2, 9);
+  const V3 r_j = seed(s_j.r, 12), g1_j = seed(s_j.g1, 18), g2_j = seed(s_j.g2, 21);
+  using std::sqrt;
+  const V3 centres = r_j - r_i;
+  const V3 d = centres / sqrt(centres.squaredNorm());
+  // The facing point of a section along `direction`: xi = R w / |w|, w = G^T direction; where the direction
+  // runs along the axis (w = 0) the particle keeps its place.
+  const auto face = [](const V3& g1, const V3& g2, const V3& direction, const Particle& p) {
+    Eigen::Matrix<Ad, 2, 1> w(g1.dot(direction), g2.dot(direction));
+    const Ad size = sqrt(w.squaredNorm());
+    if (!(size > 0.0)) return Eigen::Matrix<Ad, 2, 1>(Ad(p.transverse.x()), Ad(p.transverse.y()));
+    return Eigen::Matrix<Ad, 2, 1>(w * (p.transverse.norm() / size));
+  };
+  const Eigen::Matrix<Ad, 2, 1> xi_i = face(g1_i, g2_i, d, e.particle_i);
+  const Eigen::Matrix<Ad, 2, 1> xi_j = face(g1_j, g2_j, V3(-d), e.particle_j);
+  const V3 x_i = r_i + xi_i[0] * g1_i + xi_i[1] * g2_i;
+  const V3 x_j = r_j + xi_j[0] * g1_j + xi_j[1] * g2_j;
+  const V3 relative = x_j - x_i;
+  CentreFacing out;
+  Eigen::Matrix<double, 2, 24> dxi_i, dxi_j;
+  Eigen::Matrix<double, 3, 24> drelative;
+  for (int k = 0; k < 2; ++k) {
+    out.xi_i[k] = xi_i[k].value();
+    out.xi_j[k] = xi_j[k].value();
+    dxi_i.row(k) = xi_i[k].derivatives().transpose();
+    dxi_j.row(k) = xi_j[k].derivatives().transpose();
+  }
+  Eigen::Vector3d rel;
+  for (int k = 0; k < 3; ++k) {
+    rel[k] = relative[k].value();
+    drelative.row(k) = relative[k].derivatives().transpose();
+  }
+  out.dxi_i = to_unknowns<2>(dxi_i, s_i, s_j);
+  out.dxi_j = to_unknowns<2>(dxi_j, s_i, s_j);
+  // gap = <x_J - x_I, n>: its derivative through the particles' positions and through the normal.
+  out.gap = normal.dot(rel);
+  out.dgap = normal.transpose() * to_unknowns<3>(drelative, s_i, s_j) + rel.transpose() * dn;
+  return out;
+}
+
+/// contact_response with options.centre_facing (and facing_particles).
+void centre_facing_response(const ContactElement& e, const beam::ElementVector& q_i,
+                            const beam::ElementVector& q_j, const beam::ElementVector& q_i_committed,
+                            const beam::ElementVector& q_j_committed, const NormalLaw& normal,
+                            const FrictionLaw* friction, const Eigen::Vector3d& reversible_committed,
+                            const ResponseOptions& options, ContactResponse& r) {
+  constexpr int n = beam::kElementDofs;
+  Eigen::Vector3d nrm = e.normal;
+  NormalMap dn = NormalMap::Zero();
+  if (options.linearized_normal && !current_normal(e, q_i, q_j, nrm, dn)) {
+    nrm = e.normal;
+    dn.setZero();
+  }
+  r.normal = nrm;
+  const Section s_i = section_at(e.particle_i, q_i), s_j = section_at(e.particle_j, q_j);
+  const CentreFacing g = centre_facing(e, s_i, s_j, nrm, dn);
+  Particle p_i = e.particle_i, p_j = e.particle_j;
+  p_i.transverse = g.xi_i;
+  p_j.transverse = g.xi_j;
+  const ParticleMap b_i = particle_map(p_i), b_j = particle_map(p_j);
+  Eigen::Matrix<double, 3, 2 * n> c;
+  c << -b_i, b_j;
+  r.gap = g.gap;
+  r.normal_reaction = normal_reaction(normal, r.gap);
+  const double k_n = normal_stiffness(normal, r.gap);
+  Eigen::Vector3d force_on_j = r.normal_reaction * nrm;
+  r.friction = FrictionResponse{};
+  Mat3 friction_stiffness = Mat3::Zero();
+  if (friction) {
+    const Eigen::Vector3d du = (b_j * (q_j - q_j_committed)) - (b_i * (q_i - q_i_committed));
+    r.friction = friction_response(*friction, r.normal_reaction, nrm, reversible_committed, du);
+    force_on_j += r.friction.force;
+    friction_stiffness = r.friction.stiffness;  // R_N held fixed, the normal too (as contact_response)
+  }
+  r.force = -c.transpose() * force_on_j;
+  r.tangent = c.transpose() * friction_stiffness * c;
+  if (!(r.normal_reaction > 0.0) && !(k_n > 0.0)) return;
+  // d force_on_j = -k_N m dgap + R_N dn, m = n (or force_on_j / R_N where the friction force's dependence on
+  // R_N is linearised); the residual -C^T force_on_j also moves with the particles: B_I^T F on I gains
+  // N_k F dxi_a in the rows of director a of node k, -B_J^T F on J loses as much.
+  const Eigen::Vector3d m = options.friction_normal_coupling && r.normal_reaction > 0.0
+                                ? Eigen::Vector3d(force_on_j / r.normal_reaction)
+                                : nrm;
+  r.tangent += c.transpose() * (k_n * m * g.dgap - r.normal_reaction * dn);
+  const Eigen::Vector3d applied =
+      options.friction_normal_coupling ? force_on_j : Eigen::Vector3d(r.normal_reaction * nrm);
+  for (int k = 0; k < beam::kElementNodes; ++k) {
+    const double v_i = s_i.shape.value[static_cast<std::size_t>(k)];
+    const double v_j = s_j.shape.value[static_cast<std::size_t>(k)];
+    for (int a = 0; a < 2; ++a) {
+      r.tangent.block<3, 2 * n>(beam::kNodeDofs * k + 3 + 3 * a, 0) += v_i * applied * g.dxi_i.row(a);
+      r.tangent.block<3, 2 * n>(n + beam::kNodeDofs * k + 3 + 3 * a, 0) -= v_j * applied * g.dxi_j.row(a);
+    }
+  }
+}
+
 }  // namespace
 
 ContactResponse contact_response(const ContactElement& e, const beam::ElementVector& q_i,
@@ -116,6 +278,11 @@ void contact_response(const ContactElement& e, const beam::ElementVector& q_i, c
                       const NormalLaw& normal, const FrictionLaw* friction,
                       const Eigen::Vector3d& reversible_committed, const ResponseOptions& options,
                       ContactResponse& r) {
+  if (options.facing_particles && options.centre_facing) {
+    centre_facing_response(e, q_i, q_j, q_i_committed, q_j_committed, normal, friction, reversible_committed,
+                           options, r);
+    return;
+  }
   constexpr int n = beam::kElementDofs;
   // Facing particles: I's particle is the point of its border furthest along +n, J's along -n. Then the gap
   // is n.(r_J - r_I) - h_I - h_J with h the support function of the section, and the particles' motion along

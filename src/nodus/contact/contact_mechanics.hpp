@@ -51,6 +51,15 @@ struct ResponseOptions {
   /// solver). The friction force's turn with the normal (its projection on the tangent plane) is left out of
   /// the tangent. Off: the normal of the contact element, fixed during Newton (the paper's loop 3).
   bool linearized_normal = false;
+  /// With facing_particles: each particle is the point of its section's border that faces the other section
+  /// along the direction between the section centres (d of Eq. 37, projected on the section), as detection
+  /// places the paper's particles (Eq. 37-40), but re-placed at every evaluation; the tangent is the exact
+  /// derivative through the particles' motion (forward automatic differentiation). Off: the facing points
+  /// along the normal, which at a crossing at a steep angle sit a full radius towards each other at every
+  /// element of the zone however far apart the axes are laterally (the gap is then n.(r_J - r_I) - R_I - R_J
+  /// all along the zone, and near a beam's tip, where the normal of the crossing is nearly perpendicular to
+  /// the centres' direction, it reports deep penetrations of sections that are apart).
+  bool centre_facing = false;
 };
 
 /// Evaluates the contact element `e` (normal fixed, unless options.linearized_normal) for the element

@@ -48,6 +48,10 @@ class ContactTerm final : public model::Term {
   /// The laws: p_reg of the normal law [mm], and friction (none: frictionless).
   void set_laws(double regularization, std::optional<FrictionLaw> friction, ResponseOptions options = {});
 
+  /// Whether the normals follow the state, linearised (ResponseOptions::linearized_normal), from the next
+  /// evaluation on.
+  void set_linearized_normal(bool on) { options_.linearized_normal = on; }
+
   ContactGeometry& geometry() { return geometry_; }
   const ContactGeometry& geometry() const { return geometry_; }
   std::vector<double>& zone_penalty() { return penalty_; }

@@ -603,6 +603,9 @@ struct ContactSettings {
   /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
   /// paper's fixed material particles (fixed).
   bool facing_particles = false;
+  /// With facing_particles: facing along the direction between the section centres (contact.particles:
+  /// centres) rather than along the normal (facing).
+  bool centre_facing = false;
   int max_detections = 4;  ///< loop 2: detections of contact elements per step, >= 1
   NormalUpdates normal_updates = NormalUpdates::nested;  ///< loop 3 (contact.normal_updates)
   int max_normal_iterations = 6;   ///< loop 3: updates of the normals per detection, >= 1
@@ -683,14 +686,20 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           "R_N varying, not symmetric: needs solver.linear_solver: umfpack, mumps or klu "
           "(docs/contact.md)"),
       K::choice(
-          "contact.particles", "fixed | facing",
-          [](const ContactSettings& c) { return c.facing_particles ? 1 : 0; },
-          [](ContactSettings& c, int i) { c.facing_particles = i == 1; },
+          "contact.particles", "fixed | facing | centres",
+          [](const ContactSettings& c) { return c.facing_particles ? (c.centre_facing ? 2 : 1) : 0; },
+          [](ContactSettings& c, int i) {
+            c.facing_particles = i >= 1;
+            c.centre_facing = i == 2;
+          },
           "where the contact forces act during Newton. fixed: the paper's particles, "
           "material points of the section borders placed at detection (Eq. 37-40). facing: "
           "at each evaluation, the points of the borders that face each other along the "
           "normal (no spurious torsional stiffness from the lever arm of a turned section; "
-          "for tightened knots)"),
+          "for tightened knots). centres: at each evaluation, the points of the borders that "
+          "face each other along the direction between the section centres, as detection "
+          "places the paper's particles (no spurious torsional stiffness either, and at a "
+          "crossing the gap grows away from it as the paper's; docs/contact.md)"),
       K::whole("contact.max_detections", &ContactSettings::max_detections, ">= 1", ranges::at_least_one,
                "loop 2 of the global algorithm (Sect. 6): at most this many detections of the "
                "contact elements per load step"),
@@ -701,10 +710,11 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           "loop 3 of the global algorithm. nested: the paper's, a Newton solve to convergence "
           "after every update of the normals and penalties. inside_newton: the normals follow "
           "the iterates within one Newton solve, the penalties are adjusted at its converged "
-          "states. linearized: the normals are functions of the state at every iterate, their "
-          "derivative in the tangent (quadratic convergence where the nested loop's fixed point "
-          "diverges; not symmetric: needs solver.linear_solver: umfpack, mumps or klu), the "
-          "penalties adjusted at converged states (docs/contact.md)"),
+          "states. linearized: within each Newton solve, once near equilibrium, the normals "
+          "are functions of the state with their derivative in the tangent (quadratic "
+          "convergence where the nested loop's fixed point diverges; not symmetric: needs "
+          "solver.linear_solver: umfpack, mumps or klu), the penalties adjusted at converged "
+          "states (docs/contact.md)"),
       K::whole("contact.max_normal_iterations", &ContactSettings::max_normal_iterations, ">= 1",
                ranges::at_least_one,
                "loop 3: at most this many updates of the normal directions and penalties per "

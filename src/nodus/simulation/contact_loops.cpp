@@ -95,7 +95,7 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
       laws_(laws) {
   problem_.set_contact_laws(
       laws_.regularization, laws_.friction,
-      {laws_.facing_particles, laws_.friction_normal_coupling, laws_.linearized_normals});
+      {laws_.facing_particles, laws_.friction_normal_coupling, false, laws_.centre_facing});
 }
 
 contact::ContactGeometry ContactLoops::detect() {
@@ -124,7 +124,8 @@ double ContactLoops::update_normals() {
   for (std::size_t k = 0; k < elements.size(); ++k) {
     contact::ContactElement& e = elements[k];
     const Eigen::Vector3d before = e.normal;
-    if (!contact::update_normal(model_, problem_.state(), e, laws_.facing_particles)) continue;
+    if (!contact::update_normal(model_, problem_.state(), e, laws_.facing_particles, laws_.centre_facing))
+      continue;
     const double angle = std::atan2(before.cross(e.normal).norm(), before.dot(e.normal));
     if (angle > turn) {
       turn = angle;
@@ -201,7 +202,26 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     // The normal force at the last evaluation: of the state the solve starts from.
     if (laws_.normal_pass_residual > 0.0)
       pass_residual = laws_.normal_pass_residual * total_normal_force(problem_.contact_states());
-    const solver::NewtonReport pass = newton_.solve(problem_, {}, pass_residual);
+    // Linearized normals: Newton starts with the normals as loop 3 left them (far from equilibrium, where the
+    // iterates overshoot, normals that follow them turn the contact forces with them and the follower
+    // force's tangent, not definite, sends Newton further away), and lets them follow the state, with their
+    // derivative in the tangent, once |R| is below kNormalUpdateRatio of the total normal force.
+    bool following = false;
+    const solver::FixedPointUpdate follow = [&](const solver::NewtonProgress& p) {
+      if (following || p.converged) return false;
+      if (!(p.residual <= kNormalUpdateRatio * total_normal_force(problem_.contact_states()))) return false;
+      problem_.set_contact_normals_follow(true);
+      following = true;
+      return true;
+    };
+    const auto solve = [&](double loose) {
+      following = false;
+      const solver::NewtonReport r =
+          newton_.solve(problem_, laws_.linearized_normals ? follow : solver::FixedPointUpdate{}, loose);
+      problem_.set_contact_normals_follow(false);
+      return r;
+    };
+    const solver::NewtonReport pass = solve(pass_residual);
     if (!add_solve(total, pass)) return false;
     const bool at_tolerance =
         pass.residual <= problem_.residual_tolerance() && pass.increment <= problem_.increment_tolerance();
@@ -209,15 +229,18 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     const std::vector<double> kept_penalty = problem_.zone_penalty();
     const double turn = update_normals();
     const bool off = adjust_penalties();
-    const bool converged = turn <= laws_.normal_tolerance && !off;
+    // Where the normals followed the state, Newton solved with the normals of its iterates, and the update
+    // only brings the stored normals (those written out) to the state: their turn since the last update is
+    // no reason to solve again.
+    const bool converged = (following || turn <= laws_.normal_tolerance) && !off;
     if (converged || m >= laws_.max_normal_iterations) {
       // Converged: the state is the equilibrium of these normals and penalties. At the cap: keep those
       // Newton converged with too, and say whether the update would still have changed them.
-      problem_.contact_geometry() = kept;
+      if (!following) problem_.contact_geometry() = kept;
       problem_.zone_penalty() = kept_penalty;
       stats_.normals_capped = !converged;
       // The state must be the equilibrium of the normals and penalties kept: to the residual tolerance.
-      if (!at_tolerance && !add_solve(total, newton_.solve(problem_))) return false;
+      if (!at_tolerance && !add_solve(total, solve(0.0))) return false;
       if (!converged)
         spdlog::debug(
             "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "

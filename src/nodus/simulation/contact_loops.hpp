@@ -31,15 +31,18 @@ struct ContactLawSettings {
   bool friction_normal_coupling = false;
   /// Particles at the facing points of the sections (contact.particles: facing); false: fixed particles.
   bool facing_particles = false;
+  /// With facing_particles: facing along the centres' direction (contact.particles: centres).
+  bool centre_facing = false;
   int max_detections = 4;
   /// Loop 3 inside Newton (contact.normal_updates: inside_newton): the normals are updated between Newton
   /// iterations once the residual has fallen below kNormalUpdateRatio of the total normal force, and at each
   /// converged state, the penalties only there; false: the paper's nested loop, a Newton solve to convergence
   /// after every update.
   bool normals_inside_newton = false;
-  /// The normals are functions of the state at every Newton iterate, linearised in the tangent
-  /// (contact.normal_updates: linearized; not symmetric, needs an LU solver). Loop 3 is then the nested one,
-  /// whose updates turn the normals by rounding only: it adjusts the penalties.
+  /// The normals become functions of the state, linearised in the tangent, within each Newton solve of the
+  /// nested loop once |R| is below kNormalUpdateRatio of the total normal force (contact.normal_updates:
+  /// linearized; not symmetric, needs an LU solver). A solve in which they did ends loop 3 unless a penalty
+  /// is adjusted.
   bool linearized_normals = false;
   int max_normal_iterations = 6;
   double normal_tolerance = 1e-3;  ///< [rad]

@@ -115,6 +115,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
                         contact::ResponseOptions options = {}) {
     contact_->set_laws(regularization, friction, options);
   }
+  /// The contact normals follow the state, linearised in the tangent, or stay as the contact loops set them.
+  void set_contact_normals_follow(bool on) { contact_->set_linearized_normal(on); }
   contact::ContactGeometry& contact_geometry() { return contact_->geometry(); }
   const contact::ContactGeometry& contact_geometry() const { return contact_->geometry(); }
   std::vector<double>& zone_penalty() { return contact_->zone_penalty(); }

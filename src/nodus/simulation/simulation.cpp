@@ -181,6 +181,7 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   // klu) only.
   laws.friction_normal_coupling = c.friction_tangent == scenario::FrictionTangent::varying;
   laws.facing_particles = c.facing_particles;
+  laws.centre_facing = c.centre_facing;
   laws.max_detections = c.max_detections;
   laws.normals_inside_newton = c.normal_updates == scenario::NormalUpdates::inside_newton;
   // Not symmetric either: LU only, as above.
