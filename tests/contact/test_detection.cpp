@@ -186,6 +186,26 @@ void expect_line_contact(bool antiparallel) {
   }
 }
 
+/// The overlap along the line of centres does not depend on the normal: two parallel beams 0.15 mm apart
+/// (R_I + R_J = 0.18 mm) overlap by 0.03 mm at every element, whichever way the normal points, while the gap
+/// along a normal turned across the line of centres is 0. With the sections shrunk by 5 % (directors of
+/// length 0.95), the overlap is 0.95 * 0.18 - 0.15 mm.
+TEST(Detection, CentreOverlapDoesNotDependOnTheNormal) {
+  Assembly a = side_by_side(false, 0.15);
+  const ContactGeometry g = detect(a.model, a.x, {});
+  ASSERT_GE(g.elements.size(), 100u);
+  Eigen::VectorXd shrunk = a.x;
+  for (int node = 0; node < shrunk.size() / 9; ++node) shrunk.segment<6>(9 * node + 3) *= 0.95;
+  for (ContactElement e : g.elements) {
+    EXPECT_NEAR(e.gap, -0.03, 1e-12);
+    EXPECT_NEAR(centre_overlap(a.model, a.x, e), 0.03, 1e-12);
+    e.normal = Vec3::UnitZ();  // across the line of centres (e_y)
+    EXPECT_NEAR((e.position_j - e.position_i).dot(e.normal), 0.0, 1e-12);
+    EXPECT_NEAR(centre_overlap(a.model, a.x, e), 0.03, 1e-12);
+    EXPECT_NEAR(centre_overlap(a.model, shrunk, e), 0.95 * 0.18 - 0.15, 1e-12);
+  }
+}
+
 TEST(Detection, ParallelBeams) {
   expect_line_contact(false);
 }

@@ -175,4 +175,19 @@ bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactE
   return true;
 }
 
+double centre_overlap(const model::Model& model, const Eigen::VectorXd& x, const ContactElement& e) {
+  const BeamCurves curves(model, x);
+  const SectionGeometry gi = curves.at_element(e.particle_i.element, e.particle_i.local);
+  const SectionGeometry gj = curves.at_element(e.particle_j.element, e.particle_j.local);
+  const Eigen::Vector3d centres = gj.r - gi.r;
+  const double distance = centres.norm();
+  if (!(distance > 0.0)) return curves.radius(e.particle_i.beam) + curves.radius(e.particle_j.beam);
+  const Eigen::Vector3d d = centres / distance;
+  const auto reach = [](const SectionGeometry& g, const Eigen::Vector3d& direction, double radius) {
+    return radius * Eigen::Vector2d(g.g1.dot(direction), g.g2.dot(direction)).norm();
+  };
+  return reach(gi, d, curves.radius(e.particle_i.beam)) + reach(gj, d, curves.radius(e.particle_j.beam)) -
+         distance;
+}
+
 }  // namespace nodus::contact

@@ -62,4 +62,12 @@ bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, con
 bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e,
                    bool facing = false, bool along_centres = false);
 
+/// The overlap of the two sections of contact element `e` in state `x` along the line of their centres:
+/// h_I(d) + h_J(-d) - |r_J - r_I| [mm], d = (r_J - r_I) / |r_J - r_I|, with h(d) = R |G^T d| the distance
+/// from the centre to the section's border point furthest along d (the section as its directors G = [g1 g2]
+/// have deformed it). Positive: the tubes overlap there. It is the penetration along the centres' direction,
+/// and does not depend on the element's normal, whose orientation a large relative rotation within a step may
+/// flip so that an overlap shows a positive gap.
+double centre_overlap(const model::Model& model, const Eigen::VectorXd& x, const ContactElement& e);
+
 }  // namespace nodus::contact
