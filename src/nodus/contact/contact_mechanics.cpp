@@ -66,41 +66,6 @@ Facing facing(const Particle& p, const beam::ElementVector& q, const Eigen::Vect
 
 using NormalMap = Eigen::Matrix<double, 3, 2 * beam::kElementDofs>;
 
-/// The normal of `e` in the current state (q_i, q_j), at its particles' abscissas, and its derivative with
-/// respect to (q_i, q_j); false (nothing written) where it is undefined.
-bool current_normal(const ContactElement& e, const beam::ElementVector& q_i, const beam::ElementVector& q_j,
-                    Eigen::Vector3d& normal, NormalMap& derivative) {
-  // Axis position and derivative along the element coordinate (only the tangent's direction counts).
-  const auto axis = [](const Particle& p, const beam::ElementVector& q, Eigen::Vector3d& r,
-                       Eigen::Vector3d& dr, beam::QuadraticShape& shape) {
-    shape = beam::quadratic_shape(p.local);
-    r.setZero();
-    dr.setZero();
-    for (int k = 0; k < beam::kElementNodes; ++k) {
-      r += shape.value[static_cast<std::size_t>(k)] * q.segment<3>(beam::kNodeDofs * k);
-      dr += shape.derivative[static_cast<std::size_t>(k)] * q.segment<3>(beam::kNodeDofs * k);
-    }
-  };
-  Eigen::Vector3d r_i, dr_i, r_j, dr_j;
-  beam::QuadraticShape s_i, s_j;
-  axis(e.particle_i, q_i, r_i, dr_i, s_i);
-  axis(e.particle_j, q_j, r_j, dr_j, s_j);
-  NormalDirection n;
-  NormalJacobian jacobian;
-  const double centre_tolerance = 1e-12 * (e.particle_i.transverse.norm() + e.particle_j.transverse.norm());
-  if (!normal_direction(r_i, dr_i, r_j, dr_j, centre_tolerance, n, jacobian)) return false;
-  normal = n.normal;
-  derivative.setZero();
-  for (int k = 0; k < beam::kElementNodes; ++k) {
-    const auto node = static_cast<std::size_t>(k);
-    derivative.block<3, 3>(0, beam::kNodeDofs * k) =
-        s_i.value[node] * jacobian.block<3, 3>(0, 0) + s_i.derivative[node] * jacobian.block<3, 3>(0, 3);
-    derivative.block<3, 3>(0, beam::kElementDofs + beam::kNodeDofs * k) =
-        s_j.value[node] * jacobian.block<3, 3>(0, 6) + s_j.derivative[node] * jacobian.block<3, 3>(0, 9);
-  }
-  return true;
-}
-
 /// The section of a particle's abscissa in state q: axis position, its derivative along the element
 /// coordinate, the directors, and the shape functions there.
 struct Section {
@@ -121,6 +86,29 @@ Section section_at(const Particle& p, const beam::ElementVector& q) {
     s.g2 += v * q.segment<3>(beam::kNodeDofs * k + 6);
   }
   return s;
+}
+
+/// The normal of `e` in the current state (q_i, q_j), at its particles' abscissas, and its derivative with
+/// respect to (q_i, q_j); false (nothing written) where it is undefined.
+bool current_normal(const ContactElement& e, const beam::ElementVector& q_i, const beam::ElementVector& q_j,
+                    Eigen::Vector3d& normal, NormalMap& derivative) {
+  // The tangent is the axis derivative along the element coordinate: only its direction counts.
+  const Section s_i = section_at(e.particle_i, q_i), s_j = section_at(e.particle_j, q_j);
+  NormalDirection n;
+  NormalJacobian jacobian;
+  const double centre_tolerance = 1e-12 * (e.particle_i.transverse.norm() + e.particle_j.transverse.norm());
+  if (!normal_direction(s_i.r, s_i.dr, s_j.r, s_j.dr, centre_tolerance, n, jacobian)) return false;
+  normal = n.normal;
+  derivative.setZero();
+  for (int k = 0; k < beam::kElementNodes; ++k) {
+    const auto node = static_cast<std::size_t>(k);
+    derivative.block<3, 3>(0, beam::kNodeDofs * k) = s_i.shape.value[node] * jacobian.block<3, 3>(0, 0) +
+                                                     s_i.shape.derivative[node] * jacobian.block<3, 3>(0, 3);
+    derivative.block<3, 3>(0, beam::kElementDofs + beam::kNodeDofs * k) =
+        s_j.shape.value[node] * jacobian.block<3, 3>(0, 6) +
+        s_j.shape.derivative[node] * jacobian.block<3, 3>(0, 9);
+  }
+  return true;
 }
 
 /// The derivative of a quantity with respect to the 24 section quantities (r, dr, g1, g2 of I, then of J),
