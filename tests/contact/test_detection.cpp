@@ -4,7 +4,9 @@
 // carrying the particles.
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <cstdio>
 #include <numbers>
 #include <vector>
 
@@ -381,6 +383,83 @@ TEST(Detection, HairpinPairsOnlyPartsFartherApartThanTheSeparationDistance) {
   DetectionParameters no_self;
   no_self.self_contact = false;
   EXPECT_TRUE(detect(m, x, no_self).zones.empty());
+}
+
+/// Two fibres side by side (axes 2 w apart in the plane of the loop) along the alpha loop's centreline: the
+/// yarn of a knot. Where the loop crosses itself (the parts D apart in z), each fibre's later part crosses
+/// both fibres' earlier part: fibre I's later part passes over fibre J's earlier part, which lies along fibre
+/// I's earlier part, paired with J all along. That crossing lies inside the box of the fibres' side-by-side
+/// zone on both beams, but far from its pairing (|s_I - s_J| of about 7 mm against l_p = 0.48 mm). Its axes'
+/// closest approach (found by sampling the exact curves) must carry a contact element.
+TEST(Detection, TwoFibresOfAYarnAlsoCrossWhereTheirLoopCrossesItself) {
+  const double radius = 0.095, w = 0.1, D = 0.21;  // side by side: gap 0.01; crossing: gap 0.02
+  double t_star = 1.9;
+  for (int i = 0; i < 60; ++i) t_star -= (t_star - 2.0 * std::sin(t_star)) / (1.0 - 2.0 * std::cos(t_star));
+  const int elements = 240;
+  const double length = 12.0, big_t = 2.6;
+  const auto fibre = [=](double side) {
+    return [=](double s) -> Vec3 {
+      const double t = -big_t + 2.0 * big_t * s / length;
+      const Vec3 m = Vec3(-2.0 * std::sin(t), 1.0 - 2.0 * std::cos(t), 0.0).normalized();
+      return Vec3(t - 2.0 * std::sin(t), -2.0 * std::cos(t), 0.5 * D * std::sin(0.5 * kPi * t / t_star)) +
+             side * w * m;
+    };
+  };
+  model::Model m;
+  m.add_beam(beam_definition(length, radius, elements));
+  m.add_beam(beam_definition(length, radius, elements));
+  Eigen::VectorXd x = m.reference();
+  place_beam(m, x, 0, fibre(1.0), constant(Vec3::UnitZ()));
+  place_beam(m, x, 1, fibre(-1.0), constant(Vec3::UnitZ()));
+  DetectionParameters no_self;
+  no_self.self_contact = false;  // the fibres' self-contact at the crossing is another matter
+  const ContactGeometry g = detect(m, x, no_self);
+
+  // Closest approach of the later part of one fibre to the earlier part of the other: sampled every 0.5 um.
+  const auto closest = [&](double later_side, double earlier_side) {
+    const auto later = fibre(later_side), earlier = fibre(earlier_side);
+    std::array<double, 3> best{1e9, 0.0, 0.0};
+    for (double s = 0.6 * length; s <= 0.95 * length; s += 0.02)
+      for (double u = 0.05 * length; u <= 0.4 * length; u += 0.02)
+        if (const double d = (later(s) - earlier(u)).norm(); d < best[0]) best = {d, s, u};
+    for (double step = 0.01; step >= 5e-4; step /= 2.0)
+      for (bool moved = true; moved;) {
+        moved = false;
+        for (const auto& [ds, du] : {std::pair{step, 0.0}, {-step, 0.0}, {0.0, step}, {0.0, -step}}) {
+          const double d = (later(best[1] + ds) - earlier(best[2] + du)).norm();
+          if (d < best[0]) {
+            best = {d, best[1] + ds, best[2] + du};
+            moved = true;
+          }
+        }
+      }
+    return best;
+  };
+  for (const auto& [later_side, earlier_side] : {std::pair{1.0, -1.0}, std::pair{-1.0, 1.0}}) {
+    const auto [distance, s_later, s_earlier] = closest(later_side, earlier_side);
+    ASSERT_NEAR(distance, D, 0.01);  // the construction: the parts cross D apart
+    const double s_i = later_side > 0.0 ? s_later : s_earlier, s_j = later_side > 0.0 ? s_earlier : s_later;
+    const ContactElement* nearest = nullptr;
+    for (const ContactElement& e : g.elements)
+      if (!nearest || std::hypot(e.particle_i.abscissa - s_i, e.particle_j.abscissa - s_j) <
+                          std::hypot(nearest->particle_i.abscissa - s_i, nearest->particle_j.abscissa - s_j))
+        nearest = &e;
+    ASSERT_NE(nearest, nullptr);
+    EXPECT_LT(std::hypot(nearest->particle_i.abscissa - s_i, nearest->particle_j.abscissa - s_j), 0.1)
+        << "no contact element at the crossing of fibre " << (later_side > 0.0 ? "I" : "J")
+        << "'s later part (s = " << s_later << ") over the other's earlier part (s = " << s_earlier << ")";
+    EXPECT_NEAR(nearest->gap, distance - 2.0 * radius, 1e-4);  // the element is off by 0.4 um at most
+    std::printf(
+        "yarn loop: crossing at (%.3f, %.3f) mm, axes %.5f mm apart; nearest element %.4f mm off, gap "
+        "%.5f mm\n",
+        s_i, s_j, distance,
+        std::hypot(nearest->particle_i.abscissa - s_i, nearest->particle_j.abscissa - s_j), nearest->gap);
+  }
+  // And the fibres are still paired side by side along the yarn.
+  int side_by_side = 0;
+  for (const ContactElement& e : g.elements)
+    if (std::abs(e.particle_i.abscissa - e.particle_j.abscissa) < 0.1) ++side_by_side;
+  EXPECT_GT(side_by_side, 200);
 }
 
 /// Elements of `a` and `b` match with the particles of I and J exchanged, opposite normals, same gaps.

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <tuple>
 
@@ -29,6 +30,7 @@ struct RawZone {
   double a = 0.0, b = 0.0, lo = 0.0, hi = 0.0;  ///< [a, b] on I, [lo, hi] on J, lo <= hi
   bool antiparallel = false;
   double evidence = 1.0;  ///< |cos| of the angle between the axes when they decided the orientation, else 1
+  std::vector<std::pair<double, double>> pairs;  ///< the chain's (s on I, s on J): the zone's pairing
 };
 
 double clamp_to(double s, double length) {
@@ -164,9 +166,13 @@ std::vector<RawZone> zones_from_beam(const BeamCurves& curves, const ElementTree
               clamp_to(*lo_it - half, other_length),
               clamp_to(*hi_it + half, other_length),
               antiparallel,
-              evidence};
+              evidence,
+              {}};
     // Canonical order: beam_i < beam_j; for self-contact, [a, b] on the later part.
-    if (beam > c.beam || (beam == c.beam && c.later)) {
+    const bool swap = beam > c.beam || (beam == c.beam && c.later);
+    for (std::size_t k = 0; k < c.tests.size(); ++k)
+      z.pairs.push_back(swap ? std::pair{c.match[k], c.tests[k]} : std::pair{c.tests[k], c.match[k]});
+    if (swap) {
       std::swap(z.beam_i, z.beam_j);
       std::swap(z.a, z.lo);
       std::swap(z.b, z.hi);
@@ -186,10 +192,22 @@ bool overlaps(const ProximityZone& x, const ProximityZone& y) {
 /// crossing near 90 degrees does not flip its pairing from one detection to the next.
 constexpr double kWeakOrientation = 0.5;
 
-/// Merges the raw zones of one pair of beams whose intervals overlap on both beams; the result does not
-/// depend on which beam's test points found which zone. Zones whose orientation is weakly decided take that
-/// of an overlapping zone of `previous` (may be null).
-std::vector<ProximityZone> merge(std::vector<RawZone> raw, const std::vector<ProximityZone>* previous) {
+/// Whether two raw zones of one pair of beams pair the same parts: some matched pair of one lies within
+/// `reach` of one of the other on both beams. Their boxes may overlap without it: two fibres of a yarn are
+/// paired side by side all along it, and where the yarn's knot crosses itself one fibre's later part crosses
+/// the other's earlier part, inside that box but far from its pairing.
+bool same_pairing(const RawZone& x, const RawZone& y, double reach) {
+  for (const auto& [s, u] : x.pairs)
+    for (const auto& [t, v] : y.pairs)
+      if (std::abs(s - t) <= reach && std::abs(u - v) <= reach) return true;
+  return false;
+}
+
+/// Merges the raw zones of one pair of beams whose intervals overlap on both beams and which pair the same
+/// parts (same_pairing within l_p); the result does not depend on which beam's test points found which zone.
+/// Zones whose orientation is weakly decided take that of an overlapping zone of `previous` (may be null).
+std::vector<ProximityZone> merge(std::vector<RawZone> raw, double matching_length,
+                                 const std::vector<ProximityZone>* previous) {
   std::sort(raw.begin(), raw.end(), [](const RawZone& x, const RawZone& y) {
     return std::tie(x.beam_i, x.beam_j, x.a, x.b, x.lo, x.hi) <
            std::tie(y.beam_i, y.beam_j, y.a, y.b, y.lo, y.hi);
@@ -204,7 +222,8 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw, const std::vector<Pro
   for (std::size_t i = 0; i < n; ++i)
     for (std::size_t k = i + 1; k < n && raw[k].beam_i == raw[i].beam_i && raw[k].beam_j == raw[i].beam_j;
          ++k)
-      if (raw[k].a <= raw[i].b && raw[i].a <= raw[k].b && raw[k].lo <= raw[i].hi && raw[i].lo <= raw[k].hi)
+      if (raw[k].a <= raw[i].b && raw[i].a <= raw[k].b && raw[k].lo <= raw[i].hi && raw[i].lo <= raw[k].hi &&
+          same_pairing(raw[i], raw[k], matching_length))
         parent[find(k)] = find(i);
 
   std::vector<ProximityZone> zones;
@@ -230,12 +249,17 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw, const std::vector<Pro
   }
   for (std::size_t k = 0; k < zones.size(); ++k) {
     bool antiparallel = orientation[k] < 0.0;
-    if (previous && evidence[k] < kWeakOrientation)
+    if (previous && evidence[k] < kWeakOrientation) {
+      // The overlapping previous zone whose pairing passes nearest to this zone's centre.
+      const ProximityZone& z = zones[k];
+      double nearest = std::numeric_limits<double>::infinity();
       for (const ProximityZone& p : *previous)
-        if (overlaps(zones[k], p)) {
-          antiparallel = p.c > p.d;
-          break;
-        }
+        if (overlaps(z, p))
+          if (const double d = pairing_distance(p, 0.5 * (z.a + z.b), 0.5 * (z.c + z.d)); d < nearest) {
+            nearest = d;
+            antiparallel = p.c > p.d;
+          }
+    }
     if (antiparallel) std::swap(zones[k].c, zones[k].d);
   }
   std::sort(zones.begin(), zones.end(), [](const ProximityZone& x, const ProximityZone& y) {
@@ -245,6 +269,14 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw, const std::vector<Pro
 }
 
 }  // namespace
+
+double pairing_distance(const ProximityZone& zone, double s_i, double s_j) {
+  const Eigen::Vector2d from(zone.a, zone.c), along = Eigen::Vector2d(zone.b, zone.d) - from;
+  const Eigen::Vector2d p(s_i, s_j);
+  const double length2 = along.squaredNorm();
+  const double t = length2 > 0.0 ? std::clamp((p - from).dot(along) / length2, 0.0, 1.0) : 0.0;
+  return (p - from - t * along).norm();
+}
 
 std::vector<ProximityZone> find_zones(const BeamCurves& curves, const ElementTree& tree,
                                       const std::vector<int>& beams, const DetectionParameters& prm,
@@ -258,7 +290,7 @@ std::vector<ProximityZone> find_zones(const BeamCurves& curves, const ElementTre
         zones_from_beam(curves, tree, beams[static_cast<std::size_t>(k)], prm);
   std::vector<RawZone> raw;
   for (const std::vector<RawZone>& z : found) raw.insert(raw.end(), z.begin(), z.end());
-  return merge(std::move(raw), previous);
+  return merge(std::move(raw), prm.matching_length, previous);
 }
 
 }  // namespace nodus::contact

@@ -21,6 +21,12 @@ struct ProximityZone {
   int num_elements = 0;     ///< number of its contact elements
 };
 
+/// The distance in the plane of abscissas (s_I, s_J) from (s_i, s_j) to `zone`'s pairing, the segment from
+/// (a, c) to (b, d) along which its contact elements sit [mm]. Zones of one pair of beams whose boxes
+/// [a, b] x [c, d] overlap may still pair different parts: two fibres of a yarn paired side by side all along
+/// it also cross where the yarn's knot crosses itself, inside that box but far from its pairing.
+double pairing_distance(const ProximityZone& zone, double s_i, double s_j);
+
 /// The proximity zones between the beams `beams` (sorted, unique) of `curves`, ordered by (beam_i, beam_j,
 /// a); `tree` holds their elements. Zones whose orientation is weakly decided (axes crossing at more than 60
 /// degrees) keep that of an overlapping zone of `previous` (may be null). `parallel`: beam by beam on the

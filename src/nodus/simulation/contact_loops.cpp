@@ -109,10 +109,11 @@ contact::ContactGeometry ContactLoops::detect() {
 
 void ContactLoops::install(contact::ContactGeometry next) {
   const contact::ContactGeometry& old = problem_.contact_geometry();
+  const double reach = contact::resolve_parameters(detection_, model_, beams_).separation_distance;
   std::vector<double> penalty =
-      contact::transfer_penalties(old, problem_.zone_penalty(), next, laws_.penalty);
+      contact::transfer_penalties(old, problem_.zone_penalty(), next, laws_.penalty, reach);
   std::vector<Eigen::Vector3d> reversible =
-      contact::transfer_reversible(old, problem_.reversible_committed(), next);
+      contact::transfer_reversible(old, problem_.reversible_committed(), next, reach);
   // Newton analyses the tangent again if the pattern changed (EquilibriumProblem::pattern_version).
   problem_.set_contact(std::move(next), std::move(penalty), std::move(reversible));
 }
