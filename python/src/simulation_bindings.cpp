@@ -52,6 +52,7 @@ py::dict step_dict(const simulation::Simulation& sim, const simulation::StepReco
   d["stabilization_force"] = r.stabilization_force;
   d["min_orientation"] = r.min_orientation;
   d["min_chord"] = r.min_chord;
+  d["min_clearance"] = r.min_clearance;
   d["ends_stage"] = r.ends_stage;
   py::dict reactions;
   for (std::size_t c = 0; c < r.sections.size(); ++c) {

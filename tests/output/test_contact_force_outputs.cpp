@@ -191,10 +191,11 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
                                          "loops_converged",
                                          "min_orientation",
                                          "min_chord",
+                                         "min_clearance",
                                          "l0_fx"};
   ASSERT_GE(steps[0].size(), leading.size());
-  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 20), leading);
-  EXPECT_EQ(steps[0].size(), 19u + 6u * 4u);
+  EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 21), leading);
+  EXPECT_EQ(steps[0].size(), 20u + 6u * 4u);
   for (std::size_t k = 0; k < records.size(); ++k) {
     const simulation::StepRecord& r = records[k];
     const auto& f = steps[1 + k];

@@ -25,11 +25,11 @@ TEST(StepsCsv, HeaderNamesContactColumnsThenSixColumnsPerCondition) {
   EXPECT_EQ(steps_csv_header({}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
             "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-            "loops_converged,min_orientation,min_chord");
+            "loops_converged,min_orientation,min_chord,min_clearance");
   EXPECT_EQ(steps_csv_header({"left", "right"}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
             "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-            "loops_converged,min_orientation,min_chord,left_fx,left_fy,left_"
+            "loops_converged,min_orientation,min_chord,min_clearance,left_fx,left_fy,left_"
             "fz,left_mx,left_my,left_mz,right_fx,right_fy,right_fz,right_mx,right_my,"
             "right_mz");
 }
@@ -47,14 +47,14 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   s.force = Eigen::Vector3d(1, -2, 0.125);
   s.moment = Eigen::Vector3d(0, 1234.5, -1e-20);
   r.sections = {s};
-  // Without contact the zone and element counts and the contact-loop figures are 0, and no loop ended at
-  // its cap (loops_converged 1).
+  // Without contact the zone and element counts and the contact-loop figures are 0, no loop ended at its cap
+  // (loops_converged 1), and there is no clearance (nan).
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,1,1,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20");
   r.zones = 3;
   r.contact_elements = 41;
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,1,1,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20");
   r.detections = 2;
   r.normal_iterations = 5;
   r.penetration_ratio = 2.0 / 3.0;
@@ -65,13 +65,14 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   r.loops_converged = false;
   r.min_orientation = -0.25;
   r.min_chord = 1.0 / 3.0;
+  r.min_clearance = -0.0125;
   EXPECT_EQ(
       steps_csv_row(r, "bend", 1),
       "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,2,5,0.6666666667,12.5,3.333333333e-08,17,0.25,0,-0.25,"
-      "0.3333333333,1,-2,0.125,0,1234.5,-1e-20");
+      "0.3333333333,-0.0125,1,-2,0.125,0,1234.5,-1e-20");
   // A missing section gives empty fields; a stage name with a comma is quoted.
   const std::string row = steps_csv_row(r, "a,b", 2);
-  EXPECT_EQ(testing::split(row, ',').size(), 19u + 12u + 1u);  // the quoted comma splits once more
+  EXPECT_EQ(testing::split(row, ',').size(), 20u + 12u + 1u);  // the quoted comma splits once more
   EXPECT_NE(row.find(",\"a,b\","), std::string::npos);
   EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,");
 }
@@ -104,12 +105,13 @@ TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
                                                                   {"stabilization_force", "0.125"},
                                                                   {"loops_converged", "0"},
                                                                   {"min_orientation", "1"},
-                                                                  {"min_chord", "1"}};
+                                                                  {"min_chord", "1"},
+                                                                  {"min_clearance", "nan"}};
   for (std::size_t k = 0; k < expected.size(); ++k) {
     ASSERT_EQ(header[7 + k], expected[k].first);
     EXPECT_EQ(fields[7 + k], expected[k].second) << expected[k].first;
   }
-  EXPECT_EQ(header[19], "left_fx");
+  EXPECT_EQ(header[20], "left_fx");
 }
 
 TEST(StepsCsv, BodyColumnsAfterTheConditions) {
@@ -117,7 +119,7 @@ TEST(StepsCsv, BodyColumnsAfterTheConditions) {
   const std::string head =
       "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
       "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-      "loops_converged,min_orientation,min_chord";
+      "loops_converged,min_orientation,min_chord,min_clearance";
   EXPECT_EQ(
       steps_csv_header({"hold"}, {"y.r1.start", "cap"}),
       head +
@@ -144,22 +146,22 @@ TEST(StepsCsv, BodyColumnsAfterTheConditions) {
   b.tie = 1e-9;
   r.bodies = {b};
   EXPECT_EQ(steps_csv_row(r, "twist", 1, 1),
-            "3,twist,0.5,0,0,0,0,0,0,0,0,0,0,0,0,0,1,1,1,1,0,0,0,0,0,"
+            "3,twist,0.5,0,0,0,0,0,0,0,0,0,0,0,0,0,1,1,1,nan,1,0,0,0,0,0,"
             "-1,2.5,0.3333333333,0,-1e-20,1234.5,6.666666667e-07,1e-09");
   // Every header column has its field; a body missing from the record gives empty fields.
   const auto header = testing::split(steps_csv_header({"hold"}, {"y.r1.start", "cap"}), ',');
   const auto fields = testing::split(steps_csv_row(r, "twist", 1, 2), ',');
   ASSERT_EQ(fields.size(), header.size());
-  EXPECT_EQ(header[25], "y.r1.start_fx");
-  EXPECT_EQ(fields[25], "-1");
-  EXPECT_EQ(header[31], "y.r1.start_error");
-  EXPECT_EQ(fields[31], "6.666666667e-07");
-  EXPECT_EQ(header[32], "y.r1.start_tie");
-  EXPECT_EQ(fields[32], "1e-09");
-  for (std::size_t k = 33; k < fields.size(); ++k) EXPECT_EQ(fields[k], "") << header[k];
+  EXPECT_EQ(header[26], "y.r1.start_fx");
+  EXPECT_EQ(fields[26], "-1");
+  EXPECT_EQ(header[32], "y.r1.start_error");
+  EXPECT_EQ(fields[32], "6.666666667e-07");
+  EXPECT_EQ(header[33], "y.r1.start_tie");
+  EXPECT_EQ(fields[33], "1e-09");
+  for (std::size_t k = 34; k < fields.size(); ++k) EXPECT_EQ(fields[k], "") << header[k];
   // Without bodies the row is what it was: no body fields.
   EXPECT_EQ(steps_csv_row(r, "twist", 1), steps_csv_row(r, "twist", 1, 0));
-  EXPECT_EQ(testing::split(steps_csv_row(r, "twist", 1), ',').size(), 19u + 6u);
+  EXPECT_EQ(testing::split(steps_csv_row(r, "twist", 1), ',').size(), 20u + 6u);
 }
 
 TEST(Summary, JsonHoldsEveryField) {

@@ -18,7 +18,7 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
   std::string header =
       "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
       "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-      "loops_converged,min_orientation,min_chord";
+      "loops_converged,min_orientation,min_chord,min_clearance";
   for (const std::string& name : condition_names)
     for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz"})
       header += "," + csv_field(name + "_" + component);
@@ -38,7 +38,8 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
                  record.normal_iterations, record.penetration_ratio, record.normal_force,
                  record.tangential_force, record.slipping, record.stabilization_force,
                  record.loops_converged ? 1 : 0);
-  fmt::format_to(std::back_inserter(row), ",{:.10g},{:.10g}", record.min_orientation, record.min_chord);
+  fmt::format_to(std::back_inserter(row), ",{:.10g},{:.10g},{:.10g}", record.min_orientation,
+                 record.min_chord, record.min_clearance);
   for (int c = 0; c < num_conditions; ++c) {
     if (c < static_cast<int>(record.sections.size())) {
       const loading::SectionForce& s = record.sections[static_cast<std::size_t>(c)];

@@ -15,7 +15,7 @@ namespace nodus::output {
 
 /// The header line (no line end): step,stage,time,newton_iterations,cutbacks,residual,increment,zones,
 /// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
-/// stabilization_force,loops_converged,min_orientation,min_chord,
+/// stabilization_force,loops_converged,min_orientation,min_chord,min_clearance,
 /// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order, then
 /// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error,BODY_tie for each rigid body name in order.
 std::string steps_csv_header(const std::vector<std::string>& condition_names,

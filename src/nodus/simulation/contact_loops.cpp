@@ -98,6 +98,16 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
       {laws_.facing_particles, laws_.friction_normal_coupling, false, laws_.centre_facing});
 }
 
+contact::Clearance ContactLoops::clearance() const {
+  if (beams_.empty()) return {};
+  const contact::DetectionParameters prm = contact::resolve_parameters(detection_, model_, beams_);
+  int elements = 0;
+  for (int b : beams_) elements += model_.beam(b).num_elements();
+  const bool parallel = elements >= 1000;  // as detection: below, waking the threads costs more
+  return contact::min_clearance(model_, problem_.state(), beams_, prm.separation_distance,
+                                prm.proximity_distance, 9, parallel);
+}
+
 contact::ContactGeometry ContactLoops::detect() {
   if (beams_.empty()) return {};
   const auto start = std::chrono::steady_clock::now();

@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "nodus/contact/clearance.hpp"
 #include "nodus/contact/contact_mechanics.hpp"
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
@@ -93,6 +94,9 @@ class ContactLoops {
   /// Solves the current load step of `problem_` from its current unknowns.
   solver::NewtonReport solve();
   const ContactStepStats& stats() const { return stats_; }
+  /// The smallest clearance between the surfaces of the contact beams in the current state
+  /// (contact::min_clearance, pairs within delta_prox, one beam's parts more than delta_separ apart).
+  contact::Clearance clearance() const;
   double detection_seconds() const { return detection_seconds_; }
 
  private:

@@ -426,6 +426,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             record.penetration_ratio = c.penetration_ratio;
             record.normal_force = c.normal_force;
             record.tangential_force = c.tangential_force;
+            record.min_clearance = loops->clearance().value;
             record.slipping = c.slipping;
             record.loops_converged = c.loops_converged();
             if (!record.loops_converged && !warned_capped) {

@@ -6,6 +6,7 @@
 /// stopped: checkpoints, `nodus run --resume` and branches rest on that.
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <string>
 #include <vector>
@@ -58,6 +59,10 @@ struct StepRecord {
   /// point and element centre, and the smallest element chord over its reference length [-].
   double min_orientation = 1.0;
   double min_chord = 1.0;
+  /// The smallest clearance between the contact beams' surfaces, axis distance minus both radii, over every
+  /// pair of points of different beams or of one beam more than delta_separ apart along it
+  /// (contact::min_clearance) [mm]; NaN without contact, +infinity if no two parts are within delta_prox.
+  double min_clearance = std::numeric_limits<double>::quiet_NaN();
   bool ends_stage = false;  ///< the step reached the end of its stage
 };
 
