@@ -20,14 +20,16 @@ using testing::place_beam;
 
 constexpr double kPi = std::numbers::pi;
 
-/// Beam I along x, beam J along y at height D, crossing at their middles (abscissa 2, a node of both).
-double crossing_clearance(double distance) {
+/// Beam I along x, beam J along y at height D, crossing at their middles (abscissa 2, a node of both); the
+/// directors of both scaled by `shrink` (a contracted section reaches shrink R).
+double crossing_clearance(double distance, double shrink = 1.0) {
   model::Model m;
   m.add_beam(beam_definition(4.0, 0.1, 80));
   m.add_beam(beam_definition(4.0, 0.08, 60));
   Eigen::VectorXd x = m.reference();
   place_beam(m, x, 0, line(Vec3(-2.0, 0.0, 0.0), Vec3::UnitX()), constant(Vec3::UnitZ()));
   place_beam(m, x, 1, line(Vec3(0.0, -2.0, distance), Vec3::UnitY()), constant(Vec3::UnitZ()));
+  for (Eigen::Index node = 0; node < x.size() / 9; ++node) x.segment<6>(9 * node + 3) *= shrink;
   const Clearance c = min_clearance(m, x, {}, 1.2, 0.3);
   EXPECT_EQ(c.beam_i, 0);
   EXPECT_EQ(c.beam_j, 1);
@@ -38,8 +40,9 @@ double crossing_clearance(double distance) {
 
 TEST(Clearance, CrossingBeamsApartOrPassedThrough) {
   EXPECT_NEAR(crossing_clearance(0.25), 0.25 - 0.18, 1e-12);
-  EXPECT_NEAR(crossing_clearance(0.05), 0.05 - 0.18, 1e-12);   // deep inside each other
-  EXPECT_NEAR(crossing_clearance(-0.02), 0.02 - 0.18, 1e-12);  // J under I
+  EXPECT_NEAR(crossing_clearance(0.05), 0.05 - 0.18, 1e-12);               // deep inside each other
+  EXPECT_NEAR(crossing_clearance(-0.02), 0.02 - 0.18, 1e-12);              // J under I
+  EXPECT_NEAR(crossing_clearance(0.17, 0.95), 0.17 - 0.95 * 0.18, 1e-12);  // contracted sections
 }
 
 TEST(Clearance, NothingWithinReachIsInfinite) {

@@ -20,6 +20,12 @@ struct SectionGeometry {
   double local = 0.0;  ///< element coordinate in [-1, 1]
 };
 
+/// How far the deformed section `g` of radius `radius` reaches from its centre towards unit `direction`:
+/// the support function R |G^T d| of its disc r + xi_1 g1 + xi_2 g2, |xi| <= R [mm].
+inline double section_reach(const SectionGeometry& g, const Eigen::Vector3d& direction, double radius) {
+  return radius * Eigen::Vector2d(g.g1.dot(direction), g.g2.dot(direction)).norm();
+}
+
 /// Closest point of an element's axis to a point, over a range of element coordinates.
 struct ClosestPoint {
   double local = 0.0;     ///< element coordinate of the closest point

@@ -36,7 +36,8 @@ Clearance min_clearance(const model::Model& model, const Eigen::VectorXd& x, con
     for (int i = 0; i < n; ++i) {
       const double local = -1.0 + 2.0 * i / (n - 1);
       const double s = curves.abscissa(e, local);
-      const Eigen::Vector3d p = curves.at_element(e, local).r;
+      const SectionGeometry section = curves.at_element(e, local);
+      const Eigen::Vector3d& p = section.r;
       candidates.clear();
       tree.query(Box3(p - box, p + box), candidates);
       for (int f : candidates) {
@@ -50,7 +51,12 @@ Clearance min_clearance(const model::Model& model, const Eigen::VectorXd& x, con
         }
         const ClosestPoint cp = curves.closest_point(f, p, lo, hi);
         if (cp.distance > reach) continue;
-        const double value = cp.distance - curves.radius(beam) - curves.radius(other);
+        const SectionGeometry facing = curves.at_element(f, cp.local);
+        const Eigen::Vector3d d = (facing.r - p) / cp.distance;
+        const double value = cp.distance > 0.0
+                                 ? cp.distance - section_reach(section, d, curves.radius(beam)) -
+                                       section_reach(facing, d, curves.radius(other))
+                                 : -curves.radius(beam) - curves.radius(other);
         if (value < found.value) found = {value, beam, other, s, curves.abscissa(f, cp.local)};
       }
     }

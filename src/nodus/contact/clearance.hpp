@@ -1,6 +1,8 @@
 #pragma once
-/// The clearance between the beams' surfaces: the smallest axis-to-axis distance minus the two radii over
-/// every pair of axis points of different beams, or of one beam farther apart along it than delta_separ.
+/// The clearance between the beams' surfaces: the smallest axis-to-axis distance minus how far the two
+/// deformed sections reach towards each other (section_reach: R |G^T d|, R for a section as in the reference
+/// state) over every pair of axis points of different beams, or of one beam farther apart along it than
+/// delta_separ.
 /// Unlike the contact elements, it sees every part of every beam: a pass-through that no contact element
 /// covers shows as a clearance far below -2 p_max (the knot checks, docs/contact.md).
 
@@ -14,7 +16,9 @@ namespace nodus::contact {
 
 /// Where the clearance is smallest.
 struct Clearance {
-  double value = 0.0;  ///< |r_J(u) - r_I(s)| - R_I - R_J [mm]; +infinity if no pair of points qualifies
+  /// |r_J(u) - r_I(s)| - R_I |G_I^T d| - R_J |G_J^T d|, d the unit vector between the points [mm];
+  /// +infinity if no pair of points qualifies.
+  double value = 0.0;
   int beam_i = -1, beam_j = -1;
   double s_i = 0.0, s_j = 0.0;  ///< reference arc lengths [mm]
 };

@@ -183,11 +183,8 @@ double centre_overlap(const model::Model& model, const Eigen::VectorXd& x, const
   const double distance = centres.norm();
   if (!(distance > 0.0)) return curves.radius(e.particle_i.beam) + curves.radius(e.particle_j.beam);
   const Eigen::Vector3d d = centres / distance;
-  const auto reach = [](const SectionGeometry& g, const Eigen::Vector3d& direction, double radius) {
-    return radius * Eigen::Vector2d(g.g1.dot(direction), g.g2.dot(direction)).norm();
-  };
-  return reach(gi, d, curves.radius(e.particle_i.beam)) + reach(gj, d, curves.radius(e.particle_j.beam)) -
-         distance;
+  return section_reach(gi, d, curves.radius(e.particle_i.beam)) +
+         section_reach(gj, d, curves.radius(e.particle_j.beam)) - distance;
 }
 
 }  // namespace nodus::contact
