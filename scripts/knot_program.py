@@ -15,6 +15,7 @@ The scenario is built as data (knot_scenario(), also for use from Python), check
 the Python module (nodus.Scenario) and written with Scenario.to_yaml().
 
 Usage: scripts/knot_program.py [--elements N] [--force F] [--pin-release] > SCENARIO.yaml
+       scripts/knot_program.py --yarn [--elements N] [--force F] > SCENARIO.yaml   (the 3x1 knot, Sect. 7.3)
 Requires python3-numpy (Debian) and the nodus module (PYTHONPATH=build/release/python, or found there).
 """
 
@@ -237,6 +238,157 @@ def knot_scenario(elements=300, force=0.5, pin_release=False):
     }
 
 
+# The 3x1 yarn knot (Sect. 7.3, Table 2): the monofilament's program drawn to the yarn's scale. The yarn is 6 mm
+# long, against the rod's 20: the loop's lengths are the monofilament's scaled by YARN_SCALE = 6 / 20, and the
+# waypoints of `thread` (YARN_THREAD) were drawn for the yarn's loop.
+YARN = {"rovings": 3, "fibres_per_roving": 1, "fibre_radius": 0.0564, "length": 6.0}
+YARN_SCALE = 0.3
+YARN_TWIST = 1030.0  # degrees (examples/yarn_3x1_twist.yaml: a surface helix angle of 20 degrees)
+YARN_TWISTED_LENGTH = 5.88  # mm, the length of the twisted yarn (docs/yarns.md)
+YARN_LOOP_RISE = 0.35
+YARN_TAIL_A, YARN_LOOP, YARN_TAIL_B = 1.92, 3.27, 0.81  # mm, along the yarn from end A to the crossing, round the loop, to end B
+YARN_LOOP_CROSSING = (-1.245, 0.13)  # where the loop crosses the yarn after `loop` (coarse runs) [mm]
+YARN_LOOP_FAR = (-0.29, 1.0)  # the loop's point farthest from the crossing [mm]
+YARN_CLAMP_RADIUS = 0.06
+YARN_CLAMP_LENGTH = 0.9
+YARN_CLAMP_DEPTH = 0.01
+YARN_CLAMP_Z = 0.12  # height of the loop's far point [mm]
+YARN_CLAMP_AWAY = 0.45
+YARN_CLAMP_DISTANCE = 0.18  # the yarn's outer radius + the clamp's
+YARN_THREAD_DURATION = 4.0  # s: 4 times slower than `loop`, so that the drag presses the yarn less
+YARN_THREAD = [  # (fraction of `thread`, position of end B [mm], its axis)
+    (0.15, [-1.0, -0.95, -0.25], [0, -0.3, -1]), (0.3, [-0.9, -0.6, -0.45], [0, 1, -0.1]),
+    (0.5, [-0.68, 0.38, -0.45], [0, 1, 0.3]), (0.65, [-0.62, 0.42, 0.45], [0, 0, 1]),
+    (0.8, [-0.2, -0.1, 0.45], [1, -0.5, 0]), (1.0, [0.4, -0.3, 0.3], [1, 0, 0])]
+
+
+YARN_FRICTIONS = (0.30, 0.20)  # the loosening branches (Sect. 7.3.3)
+
+
+def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, stages=None):
+    """The 3x1 yarn knot's scenario as data: the yarn twisted by the rigid bodies at its rovings' ends, then
+    tied, tightened and released as the monofilament (knot_scenario()), its ends moved as rigid assemblies.
+    `clamp`: with the clamping beams of the monofilament (an experiment: threading then stalls, issue 18)."""
+    s = YARN_SCALE
+    m = YARN["rovings"]
+    half = YARN["length"] / 2
+    start_x, end_x = -half, -half + YARN_TWISTED_LENGTH
+
+    a = End("end_a", [start_x, 0, 0])
+    b = End("end_b", [end_x, 0, 0])
+    # loop: end B rolls the yarn up into a loop of radius rho that crosses the yarn A-B at XC, as the end of
+    # a circular arc that turns by 270 degrees followed by the straight tail, rising by LOOP_RISE so that the
+    # tail passes over the yarn. The loop is then the monofilament's after `loop` at YARN_SCALE: its loop
+    # (10.9 mm from the crossing round to it) and its tails (6.4 mm to end A, 2.7 mm to end B).
+    tail_a, loop_length, tail_b = YARN_TAIL_A, YARN_LOOP, YARN_TAIL_B
+    rho = loop_length / (1.5 * np.pi + 2)
+    xc = start_x + tail_a
+    x0, arc, tail = xc + rho, 1.5 * np.pi * rho, rho + tail_b
+    n = 24
+    waypoints = []
+    for i in range(1, n + 1):
+        th = 1.5 * np.pi * i / n
+        heading = np.array([np.cos(th), np.sin(th), 0.0])
+        point = np.array([x0 + arc / th * np.sin(th), arc / th * (1 - np.cos(th)), 0.0]) + tail * heading
+        point[2] = YARN_LOOP_RISE * min(1.0, 1.5 * i / n)
+        waypoints.append((i / n, point, heading))
+    loop = {"end_a": a.move([(1.0, [start_x, 0, 0], [1, 0, 0])]), "end_b": b.move(waypoints)}
+
+    # thread: the monofilament's passes, drawn for the yarn's loop (its crossing near (-1.25, 0.13), its inside
+    # about (-0.7, 0.55), 0.45 across; clearances in yarn radii, not scaled): end B dives, turns back under
+    # the yarn and the loop, comes up through the loop, leaves over the loop's side beyond the crossing and
+    # heads along x, while end A feeds yarn into the loop.
+    thread = {"end_a": a.move([(1.0, [start_x + s * 3.0, 0, 0], [1, 0, 0])]),
+              "end_b": b.move([(t, [P[0], P[1], P[2]], d) for t, P, d in YARN_THREAD])}
+
+    ends = {"end_a": "start", "end_b": "end"}
+    conditions, twist_motions = [], {}
+    for k in range(1, m + 1):
+        for end, where in ends.items():
+            pivot = [start_x if where == "start" else end_x, 0, 0]
+            conditions.append({"name": f"{end}{k}", "type": "motion", "bodies": [f"yarn.r{k}.{where}"],
+                               "pivot": vec(pivot), "active": where == "start"})
+        # The twist (examples/yarn_3x1_twist.yaml): the end bodies turn about the yarn axis, their own rotation
+        # held, free along the axis under a small tension; one condition per body, so that each can be released.
+        conditions += [
+            {"name": f"turn{k}", "type": "motion", "bodies": [f"yarn.r{k}.end"], "dofs": ["y", "z"],
+             "pivot": [num(end_x), 0, 0]},
+            {"name": f"keep{k}", "type": "clamp", "bodies": [f"yarn.r{k}.end"], "dofs": ["rotation"]},
+            {"name": f"tension{k}", "type": "load", "bodies": [f"yarn.r{k}.end"], "force": [0.05, 0, 0]},
+            {"name": f"pull_b{k}", "type": "load", "bodies": [f"yarn.r{k}.end"], "active": False}]
+        twist_motions[f"turn{k}"] = {"rotation": [YARN_TWIST, 0, 0]}
+
+    def per_body(motions):
+        return {f"{end}{k}": target for end, target in motions.items() for k in range(1, m + 1)}
+
+    twist_ends = [f"{c}{k}" for c in ("turn", "keep", "tension") for k in range(1, m + 1)]
+    # The clamp (as the monofilament's): two beams across the far end of the loop, one above it and one
+    # below, brought onto it and held there while end B threads the loop, then taken away.
+    far = np.array(YARN_LOOP_FAR)
+    across = np.array([-far[1] + YARN_LOOP_CROSSING[1], far[0] - YARN_LOOP_CROSSING[0], 0.0])
+    across /= np.linalg.norm(across)
+    side = {"top": 1.0, "bottom": -1.0}
+    closed = {k: np.array([0, 0, -z * (YARN_CLAMP_AWAY - YARN_CLAMP_DISTANCE + YARN_CLAMP_DEPTH)])
+              for k, z in side.items()}
+    clamp_start = {k: np.array([far[0], far[1], YARN_CLAMP_Z + z * YARN_CLAMP_AWAY]) - across * YARN_CLAMP_LENGTH / 2
+                   for k, z in side.items()}
+    clamp_beam = {"material": "polyamide", "radius": YARN_CLAMP_RADIUS, "length": YARN_CLAMP_LENGTH,
+                  "elements": 12, "direction": vec(across), "director1": [0, 0, 1]}
+    clamp_beams = [{"name": f"clamp_{k}", **clamp_beam, "start": vec(clamp_start[k])} for k in side]
+    for k in side:
+        for e, where in (("a", "start"), ("b", "end")):
+            conditions.append({"name": f"clamp_{k}_{e}", "type": "motion", "beam": f"clamp_{k}", "at": where})
+    unclamp = clamp_motions({k: closed[k] + [0, 0, z * YARN_CLAMP_AWAY] for k, z in side.items()})
+
+    program = [
+        {"name": "twist", "steps": 140, "motions": twist_motions},
+        {"name": "loop", "steps": 60, "stabilization": stabilization,
+         "release": twist_ends, "activate": [f"end_b{k}" for k in range(1, m + 1)],
+         "motions": per_body(loop)},
+        {"name": "clamp", "steps": 10, "stabilization": stabilization, "motions": clamp_motions(closed)},
+        {"name": "thread", "steps": 100, "duration": YARN_THREAD_DURATION, "stabilization": stabilization,
+         "motions": per_body(thread)},
+        {"name": "unclamp", "steps": 4, "stabilization": stabilization, "contact_off": ["clamp_top", "clamp_bottom"],
+         "motions": unclamp},
+        # End B is pulled along x through a guide: the bodies keep the position across x and the rotation
+        # that `thread` left them (the twist's conditions turn and keep, taken again), each pulled by F / 3.
+        {"name": "pull", "steps": 40, "stabilization": stabilization,
+         "release": [f"end_b{k}" for k in range(1, m + 1)],
+         "activate": [f"{c}{k}" for c in ("pull_b", "turn", "keep") for k in range(1, m + 1)],
+         "loads": {f"pull_b{k}": {"force": [num(force / m), 0, 0]} for k in range(1, m + 1)}},
+        {"name": "settle", "steps": 16, "duration": 8, "stabilization": stabilization}]
+
+    def branch(mu):
+        release = {"name": "release", "steps": 20, "stabilization": 0.01, "line_search": True,
+                   "loads": {f"pull_b{k}": {"force": [0, 0, 0]} for k in range(1, m + 1)}}
+        rest = {"name": "rest", "steps": 20, "duration": 40, "stabilization": 0.01, "stabilization_end": 0,
+                "line_search": True}
+        return {"name": f"mu_{mu:.2f}", "from": "settle", "contact": {"friction": mu}, "stages": [release, rest]}
+
+    if not clamp:
+        program = [st for st in program if st["name"] not in ("clamp", "unclamp")]
+        clamp_beams = []
+        conditions = [c for c in conditions if not c["name"].startswith("clamp_")]
+    if stages:
+        program = [st for st in program if st["name"] in stages]
+    return {
+        "units": {"length": "mm", "force": "N", "stress": "MPa", "time": "s"},
+        "materials": [{"name": "polyamide", "young_modulus": 4000, "poisson_ratio": 0.3}],
+        **({"beams": clamp_beams} if clamp_beams else {}),
+        "yarns": [{"name": "yarn", **YARN, "elements": elements, "material": "polyamide",
+                   "start": [num(start_x), 0, 0]}],
+        "conditions": conditions,
+        "stages": program,
+        **({"branches": [branch(mu) for mu in YARN_FRICTIONS]} if not stages or "settle" in stages else {}),
+        "contact": {"friction": 0.3, "friction_tangent": "varying", "max_detections": 2, "particles": "centres",
+                    "normal_pass_residual": 0.01},
+        "solver": {"linear_solver": "klu", "line_search": False, "max_newton_iterations": 60,
+                   "easy_iterations": 30},
+        "output": {"vtk_every": 10, "checkpoint_every": 50},
+    }
+
+
+
 HEADER = """\
 # The monofilament overhand knot of Durville (2012), Sect. 7.2 and Table 1: a rod 20 mm long, radius 0.1 mm,
 # E = 4000 MPa, nu = 0.3, bending stiffness x 0.3, tied from its straight state by moving its ends,
@@ -259,15 +411,47 @@ HEADER = """\
 # In loop it lets the straight rod, compressed by its ends, buckle, and decays to 0 by the end of the stage.
 """
 
+YARN_HEADER = """\
+# The 3x1 multifilament overhand knot of Durville (2012), Sect. 7.3 and Table 2: three fibres of radius
+# 0.0564 mm, 6 mm long, E = 4000 MPa, nu = 0.3, {elements} elements each, twisted into a yarn by rigid bodies
+# at their ends, tied by moving the ends as rigid assemblies, tightened by pulling end B, then released for
+# mu = 0.3 and 0.2 (docs/knot_3x1.md).
+# Generated by scripts/knot_program.py {arguments};
+# edit that script, not this file.
+#  twist:   the end B bodies turn about the yarn's axis by {twist:g} deg under a small tension (as
+#           examples/yarn_3x1_twist.yaml);
+#  loop:    end B is carried round and over the yarn, making a loop with one crossing;
+#  thread:  end B dives under the loop, comes up through it and leaves over its far side, while end A feeds
+#           yarn into the loop (no clamping beams, unlike the paper);
+#  pull:    end B is let go along x and a force of {force:g} N (a third on each fibre) pulls it; its bodies keep
+#           their position across x and their rotation; end A stays clamped;
+#  settle:  the force held until the knot stops moving: the tightened knot (Fig. 19);
+#  branches mu_*: from the tightened knot, the force decreases to 0 (release), then the drag decays to 0
+#           (rest): the released knots (Figs. 20, 21).
+# Contact: particles facing along the line of the section centres (contact.particles: centres).
+"""
+
 
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
-    parser.add_argument("--elements", type=int, default=300, help="quadratic elements along the rod")
+    parser.add_argument("--elements", type=int, default=None,
+                        help="quadratic elements along the rod (default 300), or along each fibre with --yarn "
+                             "(default 100)")
     parser.add_argument("--force", type=float, default=0.5, help="tightening force on end B [N]")
     parser.add_argument("--pin-release", action="store_true",
                         help="let end A turn about its fixed position in the releases")
+    parser.add_argument("--yarn", action="store_true",
+                        help="the 3x1 yarn knot (Sect. 7.3) instead; --elements then counts per fibre")
     args = parser.parse_args()
+    if args.yarn:
+        elements = args.elements or 100
+        scenario = nodus.Scenario(yarn_knot_scenario(elements, args.force))
+        arguments = f"--yarn --elements {elements} --force {args.force:g}"
+        sys.stdout.write(YARN_HEADER.format(elements=elements, arguments=arguments, twist=YARN_TWIST,
+                                            force=args.force) + scenario.to_yaml())
+        return
     # Built and checked by nodus's own reader through the Python module, then written as a scenario file.
+    args.elements = args.elements or 300
     scenario = nodus.Scenario(knot_scenario(args.elements, args.force, args.pin_release))
     pin_note = ("""
 #           With --pin-release end A turns freely about its fixed position from the start of release."""
