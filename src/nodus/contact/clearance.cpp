@@ -51,12 +51,13 @@ Clearance min_clearance(const model::Model& model, const Eigen::VectorXd& x, con
         }
         const ClosestPoint cp = curves.closest_point(f, p, lo, hi);
         if (cp.distance > reach) continue;
-        const SectionGeometry facing = curves.at_element(f, cp.local);
-        const Eigen::Vector3d d = (facing.r - p) / cp.distance;
-        const double value = cp.distance > 0.0
-                                 ? cp.distance - section_reach(section, d, curves.radius(beam)) -
-                                       section_reach(facing, d, curves.radius(other))
-                                 : -curves.radius(beam) - curves.radius(other);
+        double value = -curves.radius(beam) - curves.radius(other);  // axes through each other
+        if (cp.distance > 0.0) {
+          const SectionGeometry facing = curves.at_element(f, cp.local);
+          const Eigen::Vector3d d = (facing.r - p) / cp.distance;
+          value = cp.distance - section_reach(section, d, curves.radius(beam)) -
+                  section_reach(facing, d, curves.radius(other));
+        }
         if (value < found.value) found = {value, beam, other, s, curves.abscissa(f, cp.local)};
       }
     }

@@ -43,19 +43,12 @@ std::optional<Eigen::Vector3d> interpolate(const std::vector<Stored>& points, do
   return (1.0 - w) * lower->value + w * upper->value;
 }
 
-/// The distance in the plane of abscissas from (s_i, s_j) to the polyline of `points` [mm].
+/// The distance in the plane of abscissas from `p` to the polyline of `points` [mm].
 double distance_to(const std::vector<Eigen::Vector2d>& points, const Eigen::Vector2d& p) {
+  if (points.size() == 1) return (p - points.front()).norm();
   double d = std::numeric_limits<double>::infinity();
-  for (std::size_t k = 0; k < points.size(); ++k) {
-    if (k + 1 == points.size()) {
-      d = std::min(d, (p - points[k]).norm());
-      break;
-    }
-    const Eigen::Vector2d along = points[k + 1] - points[k];
-    const double length2 = along.squaredNorm();
-    const double t = length2 > 0.0 ? std::clamp((p - points[k]).dot(along) / length2, 0.0, 1.0) : 0.0;
-    d = std::min(d, (p - points[k] - t * along).norm());
-  }
+  for (std::size_t k = 0; k + 1 < points.size(); ++k)
+    d = std::min(d, segment_distance(p, points[k], points[k + 1]));
   return d;
 }
 
@@ -113,6 +106,9 @@ std::vector<Eigen::Vector3d> transfer_reversible(const ContactGeometry& old,
     auto& r = range[static_cast<std::size_t>(e.zone)];
     r = {std::min(r[0], s_i), std::max(r[1], s_i), std::min(r[2], s_j), std::max(r[3], s_j)};
   }
+  std::map<std::pair<int, int>, std::vector<int>> zones_of_pair;  // old zones of each pair of beams
+  for (std::size_t o = 0; o < old.zones.size(); ++o)
+    zones_of_pair[{old.zones[o].beam_i, old.zones[o].beam_j}].push_back(static_cast<int>(o));
   for (auto& [key, points] : history)
     std::stable_sort(points.begin(), points.end(),
                      [](const Stored& x, const Stored& y) { return x.abscissa < y.abscissa; });
@@ -128,12 +124,11 @@ std::vector<Eigen::Vector3d> transfer_reversible(const ContactGeometry& old,
       const auto it = history.find({z.beam_i, z.beam_j, side});
       if (it == history.end()) continue;
       excluded.clear();
-      for (std::size_t o = 0; o < old.zones.size(); ++o) {
-        const ProximityZone& p = old.zones[o];
-        const auto& r = range[o];
-        if (p.beam_i == z.beam_i && p.beam_j == z.beam_j && r[2 * side] < at[side] &&
-            at[side] < r[2 * side + 1] && distance_to(pairing[o], at) > reach)
-          excluded.push_back(static_cast<int>(o));
+      for (int o : zones_of_pair[{z.beam_i, z.beam_j}]) {
+        const auto& r = range[static_cast<std::size_t>(o)];
+        if (r[2 * side] < at[side] && at[side] < r[2 * side + 1] &&
+            distance_to(pairing[static_cast<std::size_t>(o)], at) > reach)
+          excluded.push_back(o);
       }
       if (const auto value = interpolate(it->second, at[side], excluded)) {
         sum += *value;

@@ -270,12 +270,15 @@ std::vector<ProximityZone> merge(std::vector<RawZone> raw, double matching_lengt
 
 }  // namespace
 
-double pairing_distance(const ProximityZone& zone, double s_i, double s_j) {
-  const Eigen::Vector2d from(zone.a, zone.c), along = Eigen::Vector2d(zone.b, zone.d) - from;
-  const Eigen::Vector2d p(s_i, s_j);
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b) {
+  const Eigen::Vector2d along = b - a;
   const double length2 = along.squaredNorm();
-  const double t = length2 > 0.0 ? std::clamp((p - from).dot(along) / length2, 0.0, 1.0) : 0.0;
-  return (p - from - t * along).norm();
+  const double t = length2 > 0.0 ? std::clamp((p - a).dot(along) / length2, 0.0, 1.0) : 0.0;
+  return (p - a - t * along).norm();
+}
+
+double pairing_distance(const ProximityZone& zone, double s_i, double s_j) {
+  return segment_distance({s_i, s_j}, {zone.a, zone.c}, {zone.b, zone.d});
 }
 
 std::vector<ProximityZone> find_zones(const BeamCurves& curves, const ElementTree& tree,

@@ -21,6 +21,9 @@ struct ProximityZone {
   int num_elements = 0;     ///< number of its contact elements
 };
 
+/// The distance from `p` to the segment [a, b] (in the plane of abscissas (s_I, s_J)).
+double segment_distance(const Eigen::Vector2d& p, const Eigen::Vector2d& a, const Eigen::Vector2d& b);
+
 /// The distance in the plane of abscissas (s_I, s_J) from (s_i, s_j) to `zone`'s pairing, the segment from
 /// (a, c) to (b, d) along which its contact elements sit [mm]. Zones of one pair of beams whose boxes
 /// [a, b] x [c, d] overlap may still pair different parts: two fibres of a yarn paired side by side all along
