@@ -2,11 +2,15 @@
 """Tightens the monofilament knot at a series of pull forces and tabulates the tightened states (docs/knot.md).
 
 For each force F the loading program of examples/monofilament_knot.yaml (scripts/knot_program.py) is run with
-F instead of 0.5 N on end B, with only the mu = 0.3 release as a branch (or none, --no-release), and its
-states are measured as by scripts/knot_report.py (the metrics of nodus.knot_metrics). The table gives, for each
+F instead of 0.5 N on end B, with only the mu = 0.3 release as a branch (or none, --no-release), `pull` and
+`settle` with Newton's line search (knot_scenario(tighten_line_search=True): without it 2 N and more crawl once
+the knot slips), and its states are measured as by scripts/knot_report.py (the metrics of nodus.knot_metrics). The table gives, for each
 force and state: the length of the intermediate geometry in contact, the largest and summed normal
 reactions, the loop radius, the elements in contact and the spacing of the contact elements along the
-intermediate geometry (a reaction per element scales with it; the paper uses 58 elements, Fig. 14).
+intermediate geometry (a reaction per element scales with it; the paper uses 58 elements, Fig. 14), and the
+clearance of the axes (steps.csv min_clearance: distance of the axes less the sections' reach, over pairs
+more than delta_separ apart) in the state and the smallest over the steps that led to it: the contact elements'
+own penetrations do not show an overlap that falls between them.
 
 Usage: scripts/knot_force_series.py OUT [--forces 0.5,1,2,4] [--elements 300] [--no-release]
                                         [--nodus build/release/nodus] [--jobs N]
@@ -17,6 +21,7 @@ Requires python3-numpy and python3-matplotlib (Debian) and the nodus module (PYT
 """
 
 import argparse
+import csv
 import subprocess
 import sys
 from pathlib import Path
@@ -30,7 +35,7 @@ import knot_report  # noqa: E402
 
 COLUMNS = ["force_N", "state", "friction", "steps", "wall_s", "stabilization_force_N", "elements_in_contact",
            "contact_elements", "intermediate_length_mm", "element_spacing_mm", "max_normal_N", "total_normal_N",
-           "max_tangential_N", "loop_radius_mm", "tail_angle_deg"]
+           "max_tangential_N", "loop_radius_mm", "tail_angle_deg", "clearance_mm", "min_clearance_mm"]
 
 
 def element_spacing(reactions):
@@ -44,7 +49,7 @@ def element_spacing(reactions):
 def run_force(out, force, elements, release, nodus_binary, jobs):
     folder = out / f"force_{force:g}"
     folder.mkdir(parents=True, exist_ok=True)
-    scenario = knot_program.knot_scenario(elements, force)
+    scenario = knot_program.knot_scenario(elements, force, tighten_line_search=True)
     scenario["branches"] = [b for b in scenario["branches"] if b["name"] == "mu_0.30"] if release else []
     if not scenario["branches"]:
         del scenario["branches"]
@@ -60,6 +65,14 @@ def run_force(out, force, elements, release, nodus_binary, jobs):
         print(f"force {force:g} N: {' '.join(command)}", flush=True)
         subprocess.run(command, check=False)
     return folder / "run"
+
+
+def smallest_clearance(steps_csv):
+    """The smallest finite min_clearance of steps.csv [mm] (NaN if none)."""
+    with open(steps_csv, newline="") as f:
+        values = [float(row["min_clearance"]) for row in csv.DictReader(f) if row.get("min_clearance")]
+    values = [v for v in values if np.isfinite(v)]
+    return min(values) if values else float("nan")
 
 
 def measure(force, run_dir):
@@ -81,7 +94,9 @@ def measure(force, run_dir):
                      "intermediate_length_mm": row["intermediate_length_mm"],
                      "element_spacing_mm": element_spacing(reactions), "max_normal_N": row["max_normal_N"],
                      "total_normal_N": row["total_normal_N"], "max_tangential_N": row["max_tangential_N"],
-                     "loop_radius_mm": row["loop_radius_mm"], "tail_angle_deg": row["tail_angle_deg"]})
+                     "loop_radius_mm": row["loop_radius_mm"], "tail_angle_deg": row["tail_angle_deg"],
+                     "clearance_mm": state.last_step.get("min_clearance", np.nan),
+                     "min_clearance_mm": smallest_clearance(folder / "steps.csv")})
         if not own.get("converged", False):
             rows[-1]["state"] += " (stopped: " + str(own.get("failure", "not finished")) + ")"
     return rows

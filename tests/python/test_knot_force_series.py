@@ -38,6 +38,10 @@ def test_scenario_of_a_force_is_the_example_program_with_that_pull(series, tmp_p
     assert run_dir == tmp_path / "force_2" / "run"
     assert "pull_b: {force: [2.0, 0, 0]}" in text or "pull_b: {force: [2, 0, 0]}" in text
     assert "name: mu_0.30" in text and "mu_0.25" not in text and "mu_0.20" not in text
+    # pull and settle take the line search (without it 2 N crawls once the knot slips); the example's do not.
+    tightening = text[text.index("  - name: pull"):text.index("branches:")]
+    assert tightening.count("line_search: true") == 2
+    assert "line_search: true" not in example_stages_before_branches()
     example = (SOURCE_DIR / "examples" / "monofilament_knot.yaml").read_text()
     # Everything but the pull force and the branches is the example's: same stages, keyframes and settings.
     # The numbers are compared to 1e-9: the rotation vectors' round-off components (7e-14 degrees) depend on
@@ -51,6 +55,20 @@ def test_scenario_of_a_force_is_the_example_program_with_that_pull(series, tmp_p
             assert float(w) == pytest.approx(float(e), rel=1e-9, abs=1e-9), (i, w, e)
         else:
             assert w == e
+
+
+def example_stages_before_branches():
+    example = (SOURCE_DIR / "examples" / "monofilament_knot.yaml").read_text()
+    return example[example.index("stages:"):example.index("branches:")]
+
+
+def test_smallest_clearance_skips_steps_without_contact(series, tmp_path):
+    # nan: no contact in that step; inf: nothing within reach. The smallest finite value is the answer.
+    path = tmp_path / "steps.csv"
+    path.write_text("step,min_clearance\n1,nan\n2,inf\n3,-0.0021\n4,0.004\n5,-0.0007\n")
+    assert series.smallest_clearance(path) == pytest.approx(-0.0021, abs=1e-15)
+    path.write_text("step,min_clearance\n1,nan\n2,inf\n")
+    assert math.isnan(series.smallest_clearance(path))
 
 
 @pytest.mark.parametrize("forces", ["1,x", "0,1", "-2"])
