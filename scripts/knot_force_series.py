@@ -4,7 +4,9 @@
 For each force F the loading program of examples/monofilament_knot.yaml (scripts/knot_program.py) is run with
 F instead of 0.5 N on end B, with only the mu = 0.3 release as a branch (or none, --no-release), `pull` and
 `settle` with Newton's line search (knot_scenario(tighten_line_search=True): without it 2 N and more crawl once
-the knot slips), and its states are measured as by scripts/knot_report.py (the metrics of nodus.knot_metrics). The table gives, for each
+the knot slips) and the contact elements' sections paired by `bisector` (contact.section_pairing; with the
+paper's `plane`, --section-pairing plane, the knot pulled at 2 N overlaps itself where one strand wraps round
+the other), and its states are measured as by scripts/knot_report.py (the metrics of nodus.knot_metrics). The table gives, for each
 force and state: the length of the intermediate geometry in contact, the largest and summed normal
 reactions, the loop radius, the elements in contact and the spacing of the contact elements along the
 intermediate geometry (a reaction per element scales with it; the paper uses 58 elements, Fig. 14), and the
@@ -13,7 +15,7 @@ more than delta_separ apart) in the state and the smallest over the steps that l
 own penetrations do not show an overlap that falls between them.
 
 Usage: scripts/knot_force_series.py OUT [--forces 0.5,1,2,4] [--elements 300] [--no-release]
-                                        [--nodus build/release/nodus] [--jobs N]
+                                        [--nodus build/release/nodus] [--jobs N] [--section-pairing P]
   OUT/force_F/knot.yaml    the scenario of force F; OUT/force_F/ its run (a finished run is not run again,
                            an interrupted one is resumed)
   OUT/force_series.csv     one row per force and state; also printed as a markdown table
@@ -46,15 +48,18 @@ def element_spacing(reactions):
     return float(np.median(gaps)) if gaps.size else float("nan")
 
 
-def run_force(out, force, elements, release, nodus_binary, jobs):
+def run_force(out, force, elements, release, nodus_binary, jobs, pairing="bisector"):
     folder = out / f"force_{force:g}"
     folder.mkdir(parents=True, exist_ok=True)
-    scenario = knot_program.knot_scenario(elements, force, tighten_line_search=True)
+    scenario = knot_program.knot_scenario(elements, force, tighten_line_search=True, section_pairing=pairing)
     scenario["branches"] = [b for b in scenario["branches"] if b["name"] == "mu_0.30"] if release else []
     if not scenario["branches"]:
         del scenario["branches"]
     path = folder / "knot.yaml"
     text = knot_program.nodus.Scenario(scenario).to_yaml()
+    if path.is_file() and path.read_text() != text and (folder / "run").exists():
+        raise ValueError(f"{folder / 'run'} holds a run of another scenario than {path} would now say "
+                         f"(another --elements or --section-pairing?): give another OUT")
     if not path.is_file() or path.read_text() != text:
         path.write_text(text)
     summary = folder / "run" / "summary.json"
@@ -119,6 +124,9 @@ def main(argv):
     parser.add_argument("--no-release", action="store_true", help="tighten only (no mu = 0.3 branch)")
     parser.add_argument("--nodus", default=str(HERE.parent / "build" / "release" / "nodus"))
     parser.add_argument("--jobs", type=int, default=1, help="branches side by side (nodus run --jobs)")
+    parser.add_argument("--section-pairing", choices=("bisector", "plane"), default="bisector",
+                        help="contact.section_pairing (docs/contact.md); plane: the paper's, which lets the knot "
+                             "pulled at 2 N overlap itself")
     args = parser.parse_args(argv[1:])
     try:
         forces = [float(f) for f in args.forces.split(",")]
@@ -131,7 +139,12 @@ def main(argv):
         return 2
     rows = []
     for force in forces:
-        run_dir = run_force(args.out, force, args.elements, not args.no_release, args.nodus, args.jobs)
+        try:
+            run_dir = run_force(args.out, force, args.elements, not args.no_release, args.nodus, args.jobs,
+                                args.section_pairing)
+        except ValueError as error:
+            print(f"knot_force_series: {error}", file=sys.stderr)
+            return 2
         rows += measure(force, run_dir)
     table = args.out / "force_series.csv"
     knot_report.write_csv(table, COLUMNS, rows)

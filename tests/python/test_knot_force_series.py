@@ -42,6 +42,14 @@ def test_scenario_of_a_force_is_the_example_program_with_that_pull(series, tmp_p
     tightening = text[text.index("  - name: pull"):text.index("branches:")]
     assert tightening.count("line_search: true") == 2
     assert "line_search: true" not in example_stages_before_branches()
+    # The sections paired by bisector (the example: the paper's plane, the default, not written).
+    assert "section_pairing: bisector" in text
+    assert "section_pairing" not in (SOURCE_DIR / "examples" / "monofilament_knot.yaml").read_text()
+    # The same OUT asked for another scenario, with the first one's run there: refused, nothing overwritten.
+    (tmp_path / "force_2" / "run").mkdir()
+    with pytest.raises(ValueError, match="another scenario"):
+        series.run_force(tmp_path, 2.0, 300, True, "/bin/true", 1, "plane")
+    assert (tmp_path / "force_2" / "knot.yaml").read_text() == text
     example = (SOURCE_DIR / "examples" / "monofilament_knot.yaml").read_text()
     # Everything but the pull force and the branches is the example's: same stages, keyframes and settings.
     # The numbers are compared to 1e-9: the rotation vectors' round-off components (7e-14 degrees) depend on

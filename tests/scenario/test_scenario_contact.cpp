@@ -443,7 +443,8 @@ TEST(ScenarioContactErrors, Booleans) {
 TEST(ScenarioContactErrors, UnknownKey) {
   const std::string keys =
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
-      "test_point_spacing | matching_length | element_spacing | forces | penalty | max_penetration | "
+      "test_point_spacing | matching_length | element_spacing | section_pairing | forces | penalty | "
+      "max_penetration | "
       "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
       "normal_updates | max_normal_iterations | normal_tolerance | normal_pass_residual";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
@@ -510,6 +511,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
                        "  test_point_spacing: auto  # mm\n"
                        "  matching_length: auto  # mm\n"
                        "  element_spacing: auto  # mm\n"
+                       "  section_pairing: plane\n"
                        "  forces: true\n"
                        "  penalty: auto  # N/mm\n"
                        "  max_penetration: auto  # mm\n"
@@ -530,6 +532,7 @@ TEST(ScenarioContactDescribe, ShowsTheSectionAfterOutput) {
             "  max_normal_iterations: 10\n  normal_tolerance: 1e-4\n"));
   EXPECT_TRUE(contains(given,
                        "  element_spacing: auto  # mm\n"
+                       "  section_pairing: plane\n"
                        "  forces: false\n"
                        "  penalty: 250  # N/mm\n"
                        "  max_penetration: 0.004  # mm\n"

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "nodus/contact/contact_mechanics.hpp"
 #include "nodus/contact/normal_direction.hpp"
@@ -67,9 +68,57 @@ bool section_normal(const SectionGeometry& gi, const SectionGeometry& gj, double
   return true;
 }
 
-/// The contact element at relative abscissa zeta of `zone` (Eq. 33-45); false if the plane normal to the
-/// intermediate geometry misses one of the axes or the axes meet.
-bool make_element(const BeamCurves& curves, const ProximityZone& zone, double zeta, ContactElement& out) {
+/// SectionPairing::bisector: moves the linearly paired abscissas (s_i, s_j) of `zone` along its other
+/// diagonal, (s_i, s_j) + lambda (b - a, -(d - c)), to a root of f(lambda) = <r_J - r_I, t> / |t|, with t the
+/// pair's own Eq. 34 tangent (b - a) r_I' + (d - c) r_J': the centre line normal to it. Safeguarded Newton
+/// from lambda = 0 (finite-difference slope, steps of at most a quarter of the zone); false if no root is
+/// found, or if it lies beyond a beam's end.
+bool bisector_pair(const BeamCurves& curves, const ProximityZone& zone, double& s_i, double& s_j) {
+  const double s_i0 = s_i, s_j0 = s_j, di = zone.b - zone.a, dj = zone.d - zone.c;
+  const double scale = std::abs(di) + std::abs(dj);
+  if (!(scale > 0.0)) return false;
+  const auto f = [&](double lambda) {
+    const SectionGeometry p = curves.at(zone.beam_i, s_i0 + lambda * di);
+    const SectionGeometry q = curves.at(zone.beam_j, s_j0 - lambda * dj);
+    const Eigen::Vector3d t = di * p.dr + dj * q.dr;
+    const double norm = t.norm();
+    return norm > 0.0 ? (q.r - p.r).dot(t) / norm : std::numeric_limits<double>::quiet_NaN();
+  };
+  constexpr double kDelta = 1e-7;  // of the zone's extent: the slope's finite difference
+  double lambda = 0.0, value = f(0.0);
+  for (int it = 0; it < 50 && std::isfinite(value) && value != 0.0; ++it) {
+    const double slope = (f(lambda + kDelta) - f(lambda - kDelta)) / (2.0 * kDelta);
+    if (!(std::abs(slope) > 0.0)) break;
+    double step = std::clamp(-value / slope, -0.25, 0.25), next = lambda + step, next_value = f(next);
+    for (int halve = 0; halve < 30 && !(std::abs(next_value) < std::abs(value)); ++halve) {
+      step *= 0.5;
+      next = lambda + step;
+      next_value = f(next);
+    }
+    if (!(std::abs(next_value) < std::abs(value))) break;  // no decrease: at the root to rounding
+    lambda = next;
+    value = next_value;
+    if (std::abs(step) <= 1e-15) break;
+  }
+  // A root: the centre line's component along t at rounding level of the distances involved.
+  const double length = std::max(curves.model().beam(zone.beam_i).element_length(),
+                                 curves.model().beam(zone.beam_j).element_length());
+  if (!(std::abs(value) <= 1e-9 * length)) return false;
+  s_i = s_i0 + lambda * di;
+  s_j = s_j0 - lambda * dj;
+  // Beyond a beam's end the sections are its end section (BeamCurves::at clamps): such a root pairs a
+  // section with a point off the beam, as the plane's cut missing the beam does; no element there.
+  const auto on_beam = [&](int beam, double s) {
+    return s >= -1e-12 * curves.length(beam) && s <= (1.0 + 1e-12) * curves.length(beam);
+  };
+  return on_beam(zone.beam_i, s_i) && on_beam(zone.beam_j, s_j);
+}
+
+/// The contact element at relative abscissa zeta of `zone` (Eq. 33-45), its sections paired by `pairing`;
+/// false if the plane normal to the intermediate geometry misses one of the axes (bisector: no pair is found)
+/// or the axes meet.
+bool make_element(const BeamCurves& curves, const ProximityZone& zone, double zeta, SectionPairing pairing,
+                  ContactElement& out) {
   const int bi = zone.beam_i, bj = zone.beam_j;
   double s_i = zone.a + zeta * (zone.b - zone.a);
   double s_j = zone.c + zeta * (zone.d - zone.c);
@@ -77,7 +126,11 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   const Eigen::Vector3d x_int = 0.5 * (gi0.r + gj0.r);                                            // Eq. 33
   const Eigen::Vector3d t_int = 0.5 * ((zone.b - zone.a) * gi0.dr + (zone.d - zone.c) * gj0.dr);  // Eq. 34
   if (!(t_int.norm() > 0.0)) return false;
-  if (!cut_axis(curves, bi, x_int, t_int, s_i) || !cut_axis(curves, bj, x_int, t_int, s_j)) return false;
+  if (pairing == SectionPairing::bisector) {
+    if (!bisector_pair(curves, zone, s_i, s_j)) return false;
+  } else if (!cut_axis(curves, bi, x_int, t_int, s_i) || !cut_axis(curves, bj, x_int, t_int, s_j)) {
+    return false;
+  }
   // The cut must lie on the part of the axis that the zone pairs. Where an axis runs nearly along the plane
   // (at the end of a zone, where the strands of a knot part), Newton may land on another crossing of the
   // plane with the axis, even on the other part of the same beam: a self-contact element pairing a section
@@ -119,13 +172,14 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
 /// detection to the next.
 }  // namespace
 
-std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count) {
+std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count,
+                                          SectionPairing pairing) {
   const double step = 1.0 / (count - 1);
   std::vector<ContactElement> uniform;
   std::size_t smallest = 0;
   for (int i = 0; i < count; ++i) {
     ContactElement e;
-    if (!make_element(curves, zone, static_cast<double>(i) / (count - 1), e)) continue;
+    if (!make_element(curves, zone, static_cast<double>(i) / (count - 1), pairing, e)) continue;
     if (!uniform.empty() && e.gap < uniform[smallest].gap) smallest = uniform.size();
     uniform.push_back(e);
   }
@@ -145,14 +199,14 @@ std::vector<ContactElement> zone_elements(const BeamCurves& curves, const Proxim
   std::vector<ContactElement> shifted;
   for (int i = 0; anchor + i * step <= 1.0 + 1e-12; ++i) {
     ContactElement e;
-    if (make_element(curves, zone, std::min(1.0, anchor + i * step), e)) shifted.push_back(e);
+    if (make_element(curves, zone, std::min(1.0, anchor + i * step), pairing, e)) shifted.push_back(e);
   }
   return shifted;
 }
 
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
-                        double zeta, ContactElement& out) {
-  return make_element(BeamCurves(model, x), zone, zeta, out);
+                        double zeta, ContactElement& out, SectionPairing pairing) {
+  return make_element(BeamCurves(model, x), zone, zeta, pairing, out);
 }
 
 bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e, bool facing,

@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "nodus/contact/beam_curve.hpp"
+#include "nodus/contact/detection_parameters.hpp"
 #include "nodus/contact/proximity_zone.hpp"
 #include "nodus/model/model.hpp"
 
@@ -43,14 +44,16 @@ struct ContactElement {
 };
 
 /// The `count` contact elements of `zone` in the state of `curves` (Eq. 46-48; see contact_element.cpp for
-/// how the grid is placed); the `zone` field of each is left 0.
-std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count);
+/// how the grid is placed), their sections paired by `pairing`; the `zone` field of each is left 0.
+std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count,
+                                          SectionPairing pairing = SectionPairing::plane);
 
 /// The contact element at relative abscissa `zeta` in [0, 1] of `zone` in state `x` (Eq. 33-45), built as
 /// detect() builds the elements of a zone (the `zone` field of `out` is left as it is). False if the plane
-/// normal to the intermediate geometry misses one of the two axes.
+/// normal to the intermediate geometry misses one of the two axes (with SectionPairing::bisector: if no pair
+/// of sections on the line of zeta has its centre line normal to their mean tangent).
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
-                        double zeta, ContactElement& out);
+                        double zeta, ContactElement& out, SectionPairing pairing = SectionPairing::plane);
 
 /// Recomputes, in state `x`, the normal of contact element `e` for its particles as they are (Eq. 41-44; the
 /// fixed point on normal directions of Sect. 6), with its positions and gap. False if it is undefined.

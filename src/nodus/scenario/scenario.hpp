@@ -580,6 +580,12 @@ enum class NormalUpdates {
   linearized,     ///< the normals are functions of the state, linearised in the tangent (not symmetric)
 };
 
+/// Which two sections each contact element pairs (contact.section_pairing; docs/contact.md).
+enum class SectionPairing {
+  plane,     ///< the paper's plane cut normal to the intermediate geometry (Eq. 33-36)
+  bisector,  ///< the sections whose centre line is normal to their mean tangent, on the line of zeta
+};
+
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
 /// penalty) of 0 means "auto": derived from the radii and element lengths when the simulation starts (the
 /// library takes any value <= 0 so; validate() refuses negative ones, as the reader does).
@@ -587,11 +593,12 @@ struct ContactSettings {
   bool enabled = false;      ///< true when the file has a contact section, unless contact.enabled: false
   bool self_contact = true;  ///< also between separate parts of one beam
   std::vector<int> beams;    ///< indices into Scenario::beams that take part; empty: all beams
-  double proximity_distance = 0.0;   ///< delta_prox [mm], auto if <= 0
-  double separation_distance = 0.0;  ///< delta_separ [mm], auto if <= 0
-  double test_point_spacing = 0.0;   ///< h_dist [mm], auto if <= 0
-  double matching_length = 0.0;      ///< l_p [mm], auto if <= 0
-  double element_spacing = 0.0;      ///< h_c [mm], auto if <= 0
+  double proximity_distance = 0.0;                         ///< delta_prox [mm], auto if <= 0
+  double separation_distance = 0.0;                        ///< delta_separ [mm], auto if <= 0
+  double test_point_spacing = 0.0;                         ///< h_dist [mm], auto if <= 0
+  double matching_length = 0.0;                            ///< l_p [mm], auto if <= 0
+  double element_spacing = 0.0;                            ///< h_c [mm], auto if <= 0
+  SectionPairing section_pairing = SectionPairing::plane;  ///< contact.section_pairing
   // Contact mechanics (Sect. 5-6).
   bool forces = true;                ///< apply contact forces; false: detection only
   double penalty = 0.0;              ///< initial k_c per zone [N/mm], auto if <= 0
@@ -652,6 +659,16 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "h_c: spacing of the contact elements along a proximity zone. auto: h / 2, h the "
               "smaller element length of the zone's two beams")
           .or_auto(),
+      K::choice(
+          "contact.section_pairing", "plane | bisector",
+          [](const ContactSettings& c) { return static_cast<int>(c.section_pairing); },
+          [](ContactSettings& c, int i) { c.section_pairing = static_cast<SectionPairing>(i); },
+          "which two sections each contact element pairs. plane: the paper's, the plane normal "
+          "to the intermediate geometry cuts both axes (Eq. 33-36). bisector: on the same line "
+          "of the zone's linear pairing, the two sections whose centre line is normal to their "
+          "mean tangent; it follows the closest points where one strand wraps round another "
+          "at a steep angle (a knot pulled tight), where the plane pairs sections far from "
+          "them (docs/contact.md)"),
       K::flag("contact.forces", &ContactSettings::forces,
               "apply contact forces (Durville 2012, Sect. 5); false: detect and write out only"),
       K::real("contact.penalty", &ContactSettings::penalty, "N/mm", "> 0 or auto", ranges::positive,
