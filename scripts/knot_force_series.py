@@ -2,17 +2,17 @@
 """Tightens the monofilament knot at a series of pull forces and tabulates the tightened states (docs/knot.md).
 
 For each force F the loading program of examples/monofilament_knot.yaml (scripts/knot_program.py) is run with
-F instead of 0.5 N on end B, with only the mu = 0.3 release as a branch (or none, --no-release), `pull` and
-`settle` with Newton's line search (knot_scenario(tighten_line_search=True): without it 2 N and more crawl once
-the knot slips) and the contact elements' sections paired by `bisector` (contact.section_pairing; with the
-paper's `plane`, --section-pairing plane, the knot pulled at 2 N overlaps itself where one strand wraps round
-the other), and its states are measured as by scripts/knot_report.py (the metrics of nodus.knot_metrics). The table gives, for each
-force and state: the length of the intermediate geometry in contact, the largest and summed normal
-reactions, the loop radius, the elements in contact and the spacing of the contact elements along the
-intermediate geometry (a reaction per element scales with it; the paper uses 58 elements, Fig. 14), and the
-clearance of the axes (steps.csv min_clearance: distance of the axes less the sections' reach, over pairs
-more than delta_separ apart) in the state and the smallest over the steps that led to it: the contact elements'
-own penetrations do not show an overlap that falls between them.
+F instead of 0.5 N on end B, with only the mu = 0.3 release as a branch (or none, --no-release). Two settings
+differ from the example's: `pull` and `settle` take Newton's line search (knot_scenario(tighten_line_search=
+True): without it 2 N and more crawl once the knot slips), and the contact elements' sections are paired by
+`bisector` (contact.section_pairing; with the paper's `plane`, --section-pairing plane, the knot pulled at 2 N
+overlaps itself where one strand wraps round the other). Its states are measured as by scripts/knot_report.py
+(the metrics of nodus.knot_metrics). The table gives, for each force and state: the length of the intermediate
+geometry in contact, the largest and summed normal reactions, the loop radius, the elements in contact, the
+spacing of the contact elements along the intermediate geometry (a reaction per element scales with it; the
+paper uses 58 elements, Fig. 14), and the clearance of the axes (steps.csv min_clearance: their distance less
+the sections' reach, over pairs more than delta_separ apart) in the state and the smallest over the steps that
+led to it: the contact elements' own penetrations do not show an overlap that falls between them.
 
 Usage: scripts/knot_force_series.py OUT [--forces 0.5,1,2,4] [--elements 300] [--no-release]
                                         [--nodus build/release/nodus] [--jobs N] [--section-pairing P]

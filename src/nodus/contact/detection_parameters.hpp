@@ -16,10 +16,9 @@ enum class SectionPairing {
   /// From the same linearly paired abscissas, the pair moved along the zone's other diagonal, (s_I, s_J) +
   /// lambda (b - a, -(d - c)), to where the line between the section centres is normal to the pair's own
   /// t_int = (b - a) r_I' + (d - c) r_J' (Eq. 34). Where the closest points of the two axes do not follow
-  /// each
-  /// other linearly (a strand wrapping round another in a tight knot), the plane cut pairs sections far from
-  /// their closest points; this pairing follows them. The same sections as the plane where the paired points
-  /// face each other (parallel, antiparallel, and symmetric crossings).
+  /// each other linearly (a strand wrapping round another in a tight knot), the plane cut pairs sections far
+  /// from their closest points; this pairing follows them. The same sections as the plane where the paired
+  /// points face each other (parallel, antiparallel, and symmetric crossings).
   bisector,
 };
 

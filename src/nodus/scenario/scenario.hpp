@@ -593,12 +593,13 @@ struct ContactSettings {
   bool enabled = false;      ///< true when the file has a contact section, unless contact.enabled: false
   bool self_contact = true;  ///< also between separate parts of one beam
   std::vector<int> beams;    ///< indices into Scenario::beams that take part; empty: all beams
-  double proximity_distance = 0.0;                         ///< delta_prox [mm], auto if <= 0
-  double separation_distance = 0.0;                        ///< delta_separ [mm], auto if <= 0
-  double test_point_spacing = 0.0;                         ///< h_dist [mm], auto if <= 0
-  double matching_length = 0.0;                            ///< l_p [mm], auto if <= 0
-  double element_spacing = 0.0;                            ///< h_c [mm], auto if <= 0
-  SectionPairing section_pairing = SectionPairing::plane;  ///< contact.section_pairing
+  double proximity_distance = 0.0;   ///< delta_prox [mm], auto if <= 0
+  double separation_distance = 0.0;  ///< delta_separ [mm], auto if <= 0
+  double test_point_spacing = 0.0;   ///< h_dist [mm], auto if <= 0
+  double matching_length = 0.0;      ///< l_p [mm], auto if <= 0
+  double element_spacing = 0.0;      ///< h_c [mm], auto if <= 0
+  /// Which two sections each contact element pairs (contact.section_pairing).
+  SectionPairing section_pairing = SectionPairing::plane;
   // Contact mechanics (Sect. 5-6).
   bool forces = true;                ///< apply contact forces; false: detection only
   double penalty = 0.0;              ///< initial k_c per zone [N/mm], auto if <= 0
