@@ -72,11 +72,9 @@ bool section_normal(const SectionGeometry& gi, const SectionGeometry& gj, double
 /// diagonal, (s_i, s_j) + lambda (b - a, -(d - c)), to a root of f(lambda) = <r_J - r_I, t> / |t|, with t the
 /// pair's own Eq. 34 tangent (b - a) r_I' + (d - c) r_J': the centre line normal to it. Safeguarded Newton
 /// from lambda = 0 (finite-difference slope, steps of at most a quarter of the zone); false if no root is
-/// found, or if it lies beyond a beam's end.
+/// found (f is NaN where t vanishes), or if it lies beyond a beam's end.
 bool bisector_pair(const BeamCurves& curves, const ProximityZone& zone, double& s_i, double& s_j) {
   const double s_i0 = s_i, s_j0 = s_j, di = zone.b - zone.a, dj = zone.d - zone.c;
-  const double scale = std::abs(di) + std::abs(dj);
-  if (!(scale > 0.0)) return false;
   const auto f = [&](double lambda) {
     const SectionGeometry p = curves.at(zone.beam_i, s_i0 + lambda * di);
     const SectionGeometry q = curves.at(zone.beam_j, s_j0 - lambda * dj);
