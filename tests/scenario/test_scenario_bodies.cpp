@@ -206,7 +206,7 @@ TEST(ScenarioBodies, BadInputOneLineNamingTheKey) {
        "b.yaml:11: conditions[0].bodies[2]: expected each body once in bodies, got left"},
       {conditions + "  - {name: k, type: clamp, bodies: []}\n" + kStages,
        "b.yaml:11: conditions[0].bodies: expected a list of body names, non-empty, each once; one for a "
-       "load; not with beam, at or type rigid, got []"},
+       "load, two or more for a bind; not with beam, at or type rigid, got []"},
       {conditions + "  - {name: k, type: clamp, bodies: [left], beam: a}\n" + kStages,
        "b.yaml:11: conditions[0].beam: expected no beam next to bodies (the condition acts on the bodies), "
        "got a"},
@@ -215,7 +215,7 @@ TEST(ScenarioBodies, BadInputOneLineNamingTheKey) {
        "start"},
       {conditions + "  - {name: k, type: rigid, bodies: [left]}\n" + kStages,
        "b.yaml:11: conditions[0].bodies: expected no bodies on a rigid condition (bodies are for clamp, "
-       "motion and load conditions), got [left]"},
+       "motion, load and bind conditions), got [left]"},
       {conditions + "  - {name: k, type: load, bodies: [left, right]}\n" + kStages,
        "b.yaml:11: conditions[0].bodies[1]: expected one body for a load condition, got right"},
       {conditions + "  - {name: k, type: clamp, bodies: [left], pivot: [0, 0, 0]}\n" + kStages,
@@ -233,7 +233,7 @@ TEST(ScenarioBodies, BadInputOneLineNamingTheKey) {
       {conditions + "  - {name: k, type: clamp, bodies: [left], dofs: []}\n" + kStages,
        "b.yaml:11: conditions[0].dofs: expected a list of at least one of all | position | directors | x | y "
        "| z | g1x | g1y | g1z | g2x | g2y | g2z; on bodies: all | position | rotation | x | y | z | rx | ry "
-       "| rz, got []"},
+       "| rz; bind: position | x | y | z, default position, got []"},
       // And rotation items on a beam section.
       {conditions + "  - {name: k, type: clamp, beam: a, at: start, dofs: [rx]}\n" + kStages,
        "b.yaml:11: conditions[0].dofs[0]: expected one of all | position | directors | x | y | z | g1x | "
@@ -253,6 +253,22 @@ TEST(ScenarioBodies, BadInputOneLineNamingTheKey) {
            "stages:\n  - {name: s, steps: 1}\n  - {name: t, steps: 1, release: [k]}\n",
        "b.yaml:14: stages[1].release[0]: expected a condition on one body (a clamp or motion of several "
        "bodies is released body by body: give each its own condition), got k"},
+      // A bind: two or more bodies, their translations, never released.
+      {conditions + "  - {name: k, type: bind, bodies: [left]}\n" + kStages,
+       "b.yaml:11: conditions[0].bodies: expected two or more bodies for a bind condition, got [left]"},
+      {conditions + "  - {name: k, type: bind, bodies: [left, right], dofs: [x, rx]}\n" + kStages,
+       "b.yaml:11: conditions[0].dofs: expected dofs among position | x | y | z for a bind condition, got "
+       "[x, rx]"},
+      {conditions + "  - {name: k, type: bind, beam: a, at: end}\n" + kStages,
+       "b.yaml:11: conditions[0].type: expected a type other than bind without bodies (a bind holds the "
+       "translations of two or more bodies together), got bind"},
+      {conditions + "  - {name: k, type: bind, bodies: [left, right], force: [1, 0, 0]}\n" + kStages,
+       "b.yaml:11: conditions[0].force: expected no force on a bind condition (force is for load "
+       "conditions only), got [1, 0, 0]"},
+      {conditions + "  - {name: k, type: bind, bodies: [left, right]}\n" +
+           "stages:\n  - {name: s, steps: 1}\n  - {name: t, steps: 1, release: [k]}\n",
+       "b.yaml:14: stages[1].release[0]: expected a condition that is not a bind (a bind holds its bodies "
+       "together to the end of the run), got k"},
   };
   for (const Case& c : cases) EXPECT_EQ(error_of(c.text), c.expected) << c.text;
 
@@ -266,6 +282,7 @@ Scenario made_in_code() {
   Scenario s = parse(kHead + kBodies + R"(conditions:
   - {name: hold, type: clamp, bodies: [left, right], dofs: [x, y]}
   - {name: pull, type: load, bodies: [right], force: [1, 0, 0]}
+  - {name: together, type: bind, bodies: [left, right], dofs: [x]}
 )" + kStages);
   s.path = "in code";
   return s;
@@ -315,7 +332,7 @@ TEST(ScenarioBodies, ValidateRefusesBadBodyDataBuiltInCode) {
             "in code: conditions[0].bodies[1]: expected each body once in bodies, got 0");
   EXPECT_EQ(error([](Scenario& s) { s.conditions[0].type = ConditionType::rigid; }),
             "in code: conditions[0].bodies: expected no bodies on a rigid condition (bodies are for clamp, "
-            "motion and load conditions), got a list");
+            "motion, load and bind conditions), got a list");
   EXPECT_EQ(error([](Scenario& s) {
               s.conditions[1].bodies = {0, 1};
             }),
@@ -326,7 +343,7 @@ TEST(ScenarioBodies, ValidateRefusesBadBodyDataBuiltInCode) {
       error([](Scenario& s) { s.conditions[0].body_dofs = {}; }),
       "in code: conditions[0].dofs: expected a list of at least one of all | position | directors | x | "
       "y | z | g1x | g1y | g1z | g2x | g2y | g2z; on bodies: all | position | rotation | x | y | z | rx | "
-      "ry | rz, got []");
+      "ry | rz; bind: position | x | y | z, default position, got []");
   EXPECT_EQ(error([](Scenario& s) { s.conditions[0].moment = Vec3(0, 0, 1); }),
             "in code: conditions[0].moment: expected no moment on a clamp condition (moment is for load "
             "conditions only), got [0, 0, 1]");
@@ -341,6 +358,37 @@ TEST(ScenarioBodies, ValidateRefusesBadBodyDataBuiltInCode) {
             }),
             "in code: stages[1].release[0]: expected a condition on one body (a clamp or motion of several "
             "bodies is released body by body: give each its own condition), got hold");
+  // A bind of one body, of a rotation, on a beam section, released.
+  const auto bind = [](Scenario& s) {
+    s.conditions[0].type = ConditionType::bind;
+    s.conditions[0].body_dofs = {true, false, false, false, false, false};
+  };
+  EXPECT_EQ(error([&](Scenario& s) {
+              bind(s);
+              s.conditions[0].bodies = {0};
+            }),
+            "in code: conditions[0].bodies: expected two or more bodies for a bind condition, got 1");
+  EXPECT_EQ(error([&](Scenario& s) {
+              bind(s);
+              s.conditions[0].body_dofs[kBodyRy] = true;
+            }),
+            "in code: conditions[0].dofs: expected dofs among position | x | y | z for a bind condition, got "
+            "a rotation");
+  EXPECT_EQ(error([&](Scenario& s) {
+              bind(s);
+              s.conditions[0].bodies.clear();
+            }),
+            "in code: conditions[0].type: expected a type other than bind without bodies (a bind holds the "
+            "translations of two or more bodies together), got bind");
+  EXPECT_EQ(error([&](Scenario& s) {
+              bind(s);
+              StageSpec next;
+              next.name = "t";
+              next.release = {0};
+              s.stages.push_back(next);
+            }),
+            "in code: stages[1].release[0]: expected a condition that is not a bind (a bind holds its bodies "
+            "together to the end of the run), got hold");
 }
 
 /// The echo of `s` read back.
@@ -362,13 +410,14 @@ conditions:
   - {name: slide, type: motion, bodies: [y.r2.end], active: false}
   - {name: pull, type: load, bodies: [y.r1.end], force: [0.1, 0.2, 0.7], moment: [0, 0, 0], active: false}
   - {name: tip, type: clamp, beam: c, at: 1, dofs: [x, g2y]}
+  - {name: together, type: bind, bodies: [y.r1.end, y.r2.end, right], dofs: [x, z], active: false}
 stages:
   - name: s
     steps: 2
     motions: {turn: {rotation: [0, 0, 33.333333333333336]}}
   - name: t
     steps: 1
-    activate: [slide, pull]
+    activate: [slide, pull, together]
     release: [turn]
     motions: {slide: {translation: [0.1, 0, 0]}}
     loads: {pull: {moment: [1, 2, 2]}}

@@ -2,7 +2,7 @@
 // residual, over every free unknown (the free body's six included), with the terms a twisted yarn has: beam
 // internal forces, the averaged conditions with their tie (the committed state elsewhere, so that the tie
 // acts), a dead force and a moment about a fixed axis on a free body, a body held in some of its unknowns,
-// and the viscous drag.
+// a bind of two bodies' x and z (coupling their blocks), and the viscous drag.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -48,7 +48,9 @@ TEST(AssembledBodies, TangentMatchesFiniteDifferencesThroughTheWholeProblem) {
   const int turn = conditions.add_body_motion("turn", {ref(end)}, some, Vec3(1.0, 0.0, 0.0));
   const Vec3 axis = Vec3(1.0, 0.2, -0.1).normalized();
   const int push = conditions.add_body_load("push", ref(middle), Vec3::Zero(), axis, 0.0);
-  for (int c : {hold, turn, push}) conditions.activate(c, 0.0, model.reference());
+  const loading::DofMask x_and_z{true, false, true, false, false, false, false, false, false};
+  const int bind = conditions.add_body_bind("bind", {ref(end), ref(middle)}, x_and_z, 50.0);
+  for (int c : {hold, turn, push, bind}) conditions.activate(c, 0.0, model.reference());
   conditions.add_motion_keyframe(turn, 1.0, Vec3::Zero(), Vec3(0.6, 0.0, 0.0));
   conditions.add_load_keyframe(push, 1.0, Vec3(0.01, -0.02, 0.03), 0.004);
 

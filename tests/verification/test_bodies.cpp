@@ -216,5 +216,74 @@ stages:
   EXPECT_LT(steps.records.back().bodies[1].force.norm(), 1e-8);
 }
 
+// Two equal fibres side by side, each clamped at its start by a body of its own, their end bodies held across
+// x and in rotation and bound in x by a bind; a force F along x on the first end body alone. Each fibre with
+// its body penalty in series is a spring of stiffness s along x; the bind a spring k / 2 between the two
+// bodies (energy (k/2) sum_i (u_i - u_mean)^2 = (k/4) (u_1 - u_2)^2). Hence the first fibre carries
+// T_1 = F (2 s + k) / (2 (s + k)), the second T_2 = F k / (2 (s + k)), and the bind pulls the first body back
+// by T_1 - F = -F k / (2 (s + k)): with k = 4000 s, F / 2 each to 1.2e-4.
+TEST(Bodies, BoundBodiesShareTheForceOnOne) {
+  const std::string text = R"(materials:
+  - {name: m, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: f1, material: m, radius: 0.05, length: 4, elements: 4}
+  - {name: f2, material: m, radius: 0.05, length: 4, elements: 4, start: [0, 0.5, 0]}
+bodies:
+  - {name: a1, beams: [f1], at: start}
+  - {name: a2, beams: [f2], at: start}
+  - {name: b1, beams: [f1], at: end}
+  - {name: b2, beams: [f2], at: end}
+conditions:
+  - {name: hold, type: clamp, bodies: [a1, a2]}
+  - {name: guide, type: clamp, bodies: [b1, b2], dofs: [y, z, rotation]}
+  - {name: pull, type: load, bodies: [b1], force: [0, 0, 0]}
+)";
+  const std::string bound = R"(  - {name: together, type: bind, bodies: [b1, b2], dofs: [x]}
+stages:
+  - name: pull
+    steps: 2
+    loads:
+      pull: {force: [0.0314, 0, 0]}
+)";
+  const double force = 0.0314;  // strain about 5e-4 in each fibre
+  simulation::Simulation sim(scenario::parse_scenario(text + bound, "bind.yaml"));
+  StepRecorder steps;
+  ASSERT_TRUE(sim.run({&steps}).converged);
+  const simulation::StepRecord& last = steps.records.back();
+  const double t1 = last.bodies[2].force.x(), t2 = last.bodies[3].force.x();
+  const double u1 = sim.state()[sim.model().body_dof(2)] - kLength;
+  const double u2 = sim.state()[sim.model().body_dof(3)] - kLength;
+  // s from the fibres' own response: T_i = s u_i (the same spring for both, linear to the strain's 5e-4).
+  const double s_spring = (t1 - t2) / (u1 - u2);
+  const double area = std::numbers::pi * kRadius * kRadius;
+  const double k = 1e3 * kYoung * area / (kLength / kElements);
+  const double t1_expected = force * (2 * s_spring + k) / (2 * (s_spring + k));
+  std::printf(
+      "bind: T1 %.10f N, T2 %.10f N (F/2 %.4f), expected T1 %.10f N; s %.4f N/mm (E A / L %.4f), "
+      "bind force on b1 %.10f N\n",
+      t1, t2, 0.5 * force, t1_expected, s_spring, kYoung * area / kLength, last.sections[3].force.x());
+  EXPECT_NEAR(t1 + t2, force, 1e-9 * force);  // no force lost
+  EXPECT_NEAR(t1, t1_expected, 1e-7 * force);
+  // The springs: the fibre's E A / L, up to St-Venant-Kirchhoff's tangent stiffening at this strain (3 x
+  // 5e-4) less the body penalty in series (s / k = 2.5e-4): 1.3e-3 (measured 1.0e-3).
+  EXPECT_NEAR(s_spring, kYoung * area / kLength, 2e-3 * s_spring);
+  // The bind's force on its first body, as steps.csv reports it.
+  EXPECT_NEAR(last.sections[3].force.x(), t1 - force, 1e-9 * force);
+  EXPECT_NEAR(last.sections[3].force.x(), -0.5 * k * (u1 - u2), 1e-9 * force);
+
+  // Without the bind the loaded fibre carries everything.
+  const std::string unbound = R"(stages:
+  - name: pull
+    steps: 2
+    loads:
+      pull: {force: [0.0314, 0, 0]}
+)";
+  simulation::Simulation alone(scenario::parse_scenario(text + unbound, "alone.yaml"));
+  StepRecorder alone_steps;
+  ASSERT_TRUE(alone.run({&alone_steps}).converged);
+  EXPECT_NEAR(alone_steps.records.back().bodies[2].force.x(), force, 1e-9 * force);
+  EXPECT_LT(std::abs(alone_steps.records.back().bodies[3].force.x()), 1e-9 * force);
+}
+
 }  // namespace
 }  // namespace nodus::verification

@@ -25,6 +25,16 @@ void node_targets(const std::vector<int>& nodes, std::vector<int>& blocks, std::
   for (int n : nodes) first.push_back(beam::kNodeDofs * n);
 }
 
+/// The targets of a condition on rigid bodies: each body's block and first unknown.
+void body_targets(const std::vector<BodyRef>& bodies, std::vector<int>& blocks, std::vector<int>& first) {
+  blocks.clear();
+  first.clear();
+  for (const BodyRef& b : bodies) {
+    blocks.push_back(b.block);
+    first.push_back(b.dof);
+  }
+}
+
 }  // namespace
 
 int Conditions::add_motion(std::string name, int node, const DofMask& mask, std::optional<Vec3> pivot) {
@@ -74,10 +84,7 @@ int Conditions::add_body_motion(std::string name, std::vector<BodyRef> bodies, c
   item.name = std::move(name);
   item.kind = ConditionKind::motion;
   item.body = true;
-  for (const BodyRef& b : bodies) {
-    item.blocks.push_back(b.block);
-    item.first.push_back(b.dof);
-  }
+  body_targets(bodies, item.blocks, item.first);
   item.mask = mask;
   for (int d = 6; d < beam::kNodeDofs; ++d) item.mask[static_cast<std::size_t>(d)] = false;
   item.given_pivot = pivot;
@@ -98,6 +105,45 @@ int Conditions::add_body_load(std::string name, BodyRef body, const Vec3& force,
   item.axis = moment_axis.normalized();
   items_.push_back(std::move(item));
   return size() - 1;
+}
+
+int Conditions::add_body_bind(std::string name, std::vector<BodyRef> bodies, const DofMask& mask,
+                              double stiffness) {
+  if (bodies.size() < 2) throw std::invalid_argument("add_body_bind: fewer than two bodies");
+  Item item;
+  item.name = std::move(name);
+  item.kind = ConditionKind::bind;
+  item.body = true;
+  body_targets(bodies, item.blocks, item.first);
+  item.mask.fill(false);
+  for (std::size_t d = 0; d < 3; ++d) item.mask[d] = mask[d];
+  item.stiffness = stiffness;
+  items_.push_back(std::move(item));
+  return size() - 1;
+}
+
+void Conditions::set_bind_stiffness(int c, double stiffness) {
+  Item& item = at(c);
+  if (item.kind != ConditionKind::bind)
+    throw std::logic_error("set_bind_stiffness on a condition not a bind");
+  item.stiffness = stiffness;
+}
+
+std::vector<Vec3> Conditions::bind_forces(const Item& item, const Eigen::VectorXd& x) {
+  const std::size_t n = item.first.size();
+  std::vector<Vec3> u(n);
+  Vec3 mean = Vec3::Zero();
+  for (std::size_t i = 0; i < n; ++i) {
+    u[i] = x.segment<3>(item.first[i]) - item.anchors[i].head<3>();
+    mean += u[i] / static_cast<double>(n);
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3 f = -item.stiffness * (u[i] - mean);
+    for (std::size_t d = 0; d < 3; ++d)
+      if (!item.mask[d]) f[static_cast<int>(d)] = 0.0;
+    u[i] = f;
+  }
+  return u;
 }
 
 Vec3 Conditions::body_moment(const Vec3& theta, const Vec3& f_theta) {
@@ -159,6 +205,15 @@ void Conditions::anchor_moment(Item& item, const NodeVector& state) {
 void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
   Item& item = at(c);
   item.active = true;
+  if (item.kind == ConditionKind::bind) {  // the bodies' points at activation
+    item.anchors.clear();
+    for (int first : item.first) {
+      NodeVector anchor = NodeVector::Zero();
+      anchor.head<6>() = x.segment<6>(first);
+      item.anchors.push_back(anchor);
+    }
+    return;
+  }
   if (item.body && item.kind == ConditionKind::load) {
     // The moment turns a body-fixed vector e_b, normal to the axis at activation: e = Q(theta) e_b.
     const Vec3 theta = x.segment<3>(item.first.front() + 3);
@@ -201,6 +256,7 @@ void Conditions::activate(int c, double time, const Eigen::VectorXd& x) {
 void Conditions::release(int c, double time, const Eigen::VectorXd& residual, double end_time) {
   Item& item = at(c);
   if (item.rigid) throw std::logic_error("release of the rigid condition '" + item.name + "'");
+  if (item.kind == ConditionKind::bind) throw std::logic_error("release of the bind '" + item.name + "'");
   if (item.body && item.first.size() > 1 && item.active && item.kind == ConditionKind::motion)
     throw std::logic_error("release of the condition '" + item.name + "' on several bodies");
   NodeVector reaction = NodeVector::Zero();
@@ -299,12 +355,16 @@ void Conditions::apply_prescribed(double time, Eigen::VectorXd& x) const {
 }
 
 bool Conditions::applies_load(const Item& item) {
-  if (item.rigid) return false;
+  if (item.rigid || item.kind == ConditionKind::bind) return false;
   return item.kind == ConditionKind::load ? item.active : !item.active;  // a released support ramps down
 }
 
 void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const {
   for (const Item& item : items_) {
+    if (item.kind == ConditionKind::bind && item.active) {
+      const std::vector<Vec3> f = bind_forces(item, x);
+      for (std::size_t i = 0; i < f.size(); ++i) f_ext.segment<3>(item.first[i]) += f[i];
+    }
     if (!applies_load(item)) continue;
     const int base = item.first.front();
     f_ext.segment<3>(base) += item.force.at(time);
@@ -327,6 +387,18 @@ void Conditions::external_force(double time, const Eigen::VectorXd& x, Eigen::Ve
 void Conditions::add_load_tangent(double time, const Eigen::VectorXd& x,
                                   solver::SparseAssembler& assembler) const {
   for (const Item& item : items_) {
+    if (item.kind == ConditionKind::bind && item.active) {
+      // -d f_i / d c_j = k P (delta_ij - 1/n): constant.
+      const auto n = static_cast<Eigen::Index>(item.first.size());
+      Eigen::MatrixXd k = Eigen::MatrixXd::Zero(6 * n, 6 * n);
+      for (Eigen::Index i = 0; i < n; ++i)
+        for (Eigen::Index j = 0; j < n; ++j)
+          for (int d = 0; d < 3; ++d)
+            if (item.mask[static_cast<std::size_t>(d)])
+              k(6 * i + d, 6 * j + d) =
+                  item.stiffness * ((i == j ? 1.0 : 0.0) - 1.0 / static_cast<double>(n));
+      assembler.add(item.blocks, k);
+    }
     if (!applies_load(item)) continue;
     const double m = item.moment.at(time);
     if (m == 0.0) continue;
@@ -370,6 +442,10 @@ SectionForce Conditions::section_force(int c, double time, const Eigen::VectorXd
   const Item& item = at(c);
   const int base = item.first.front();
   SectionForce out;
+  if (item.kind == ConditionKind::bind) {
+    if (item.active) out.force = bind_forces(item, x).front();
+    return out;
+  }
   if (item.body) {
     if (applies_load(item)) {
       const NodeVector f = item.director_force.at(time);

@@ -3,7 +3,8 @@
 /// (a dead force on the centre, a moment about a fixed axis) [Durville 2012, Eq. 4]. A prescribed rotation
 /// acts by rotating the section directors: g_a(t) = Q(t) g_a(activation), and the centre about a pivot p
 /// fixed at activation: r(t) = p + u(t) + Q(t) (r(activation) - p); without a pivot p is the centre itself.
-/// A rigid condition moves every node of a list (a tool beam) that way.
+/// A rigid condition moves every node of a list (a tool beam) that way. A bind holds the translations of
+/// several rigid bodies together by a penalty (docs/bodies.md, "Bodies bound together").
 
 #include <array>
 #include <optional>
@@ -39,7 +40,7 @@ struct SectionForce {
   Vec3 moment = Vec3::Zero();
 };
 
-enum class ConditionKind { motion, load };
+enum class ConditionKind { motion, load, bind };
 
 /// What a condition carries through a run besides what it was built with (name, kind, nodes, dofs, given
 /// pivot): whether it acts, its anchors and pivot taken at activation, its paths (motion keyframes, load
@@ -82,10 +83,20 @@ class Conditions {
   /// body-fixed vector normal to it), so that it is conservative.
   int add_body_load(std::string name, BodyRef body, const Vec3& force, const Vec3& moment_axis,
                     double moment);
+  /// Binds the translations `mask` (entries 0-2: x, y, z of the points c) of two or more rigid bodies: from
+  /// activation on, their displacements u_i = c_i - c_i(activation) are held equal in those directions by
+  /// the penalty energy (k / 2) sum_i |P (u_i - u_mean)|^2, k [N/mm]. Nothing else of the bodies is held,
+  /// and the forces it exerts sum to zero. It is never released.
+  int add_body_bind(std::string name, std::vector<BodyRef> bodies, const DofMask& mask, double stiffness);
+  /// Sets the penalty stiffness k [N/mm] of a bind.
+  void set_bind_stiffness(int c, double stiffness);
+  double bind_stiffness(int c) const { return at(c).stiffness; }
 
   int size() const { return static_cast<int>(items_.size()); }
   const std::string& name(int c) const { return at(c).name; }
   ConditionKind kind(int c) const { return at(c).kind; }
+  /// The DofMap blocks of every node or body condition c acts on.
+  const std::vector<int>& blocks(int c) const { return at(c).blocks; }
   /// The node of a motion or load; the first node of a rigid condition (beam sections only).
   int node(int c) const { return at(c).nodes.front(); }
   /// Whether condition c acts on rigid bodies rather than beam sections.
@@ -125,7 +136,8 @@ class Conditions {
   void apply_prescribed(double time, Eigen::VectorXd& x) const;
   /// Generalised external forces of the active loads at time t and state x.
   void external_force(double time, const Eigen::VectorXd& x, Eigen::VectorXd& f_ext) const;
-  /// Adds minus the derivative of the external forces (load stiffness of moments) to the tangent.
+  /// Adds minus the derivative of the external forces (load stiffness of moments, the binds' penalty) to the
+  /// tangent.
   void add_load_tangent(double time, const Eigen::VectorXd& x, solver::SparseAssembler& assembler) const;
   /// Accepts the state x as converged (moment angles count their turns).
   void commit(const Eigen::VectorXd& x);
@@ -133,7 +145,8 @@ class Conditions {
   /// The force and moment of condition c on its section: for a motion, the reaction of the support, read from
   /// the out-of-balance forces `residual` = f_int - f_ext at the section's unknowns; for a load, the load.
   /// For a rigid condition: the resultant on all its nodes, moment about the moved pivot p + u(t). For
-  /// bodies: the resultant on the bodies, moment about the moved pivot (one body: its point c).
+  /// bodies: the resultant on the bodies, moment about the moved pivot (one body: its point c). For a bind:
+  /// the force it exerts on its first body (those on the others sum to minus it), no moment.
   SectionForce section_force(int c, double time, const Eigen::VectorXd& x,
                              const Eigen::VectorXd& residual) const;
 
@@ -162,6 +175,8 @@ class Conditions {
     Vec3 axis = Vec3::UnitZ();
     int director = 0;  ///< 0: g1, 1: g2, the one the moment acts through
     std::optional<AxisAngle> angle;
+    // bind
+    double stiffness = 0.0;  ///< k [N/mm]
   };
   const Item& at(int c) const { return items_.at(static_cast<std::size_t>(c)); }
   Item& at(int c) { return items_.at(static_cast<std::size_t>(c)); }
@@ -171,6 +186,8 @@ class Conditions {
   /// The moment [N mm] about a body's point of the generalised forces `f_theta` on its rotation vector.
   static Vec3 body_moment(const Vec3& theta, const Vec3& f_theta);
   static void anchor_moment(Item& item, const NodeVector& state);
+  /// The forces f_i = -k P (u_i - u_mean) [N] a bind exerts on the points of its bodies.
+  static std::vector<Vec3> bind_forces(const Item& item, const Eigen::VectorXd& x);
   /// Whether the item's force and moment act: an active load, or a released motion.
   static bool applies_load(const Item& item);
 

@@ -3,7 +3,12 @@
 namespace nodus::loading {
 
 void LoadTerm::couplings(std::vector<std::vector<int>>& groups) const {
-  for (int c = 0; c < conditions_.size(); ++c) groups.push_back({conditions_.block(c)});
+  for (int c = 0; c < conditions_.size(); ++c) {
+    if (conditions_.kind(c) == ConditionKind::bind)
+      groups.push_back(conditions_.blocks(c));  // a bind couples its bodies
+    else
+      groups.push_back({conditions_.block(c)});
+  }
 }
 
 void LoadTerm::add(const model::TermState& state, Eigen::VectorXd& residual,

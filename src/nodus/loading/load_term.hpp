@@ -14,7 +14,8 @@ class LoadTerm final : public model::Term {
   explicit LoadTerm(Conditions& conditions) : conditions_(conditions) {}
 
   std::string_view name() const override { return "loads"; }
-  /// The node of every condition: any of them may carry a load (a released support does).
+  /// The node of every condition: any of them may carry a load (a released support does); a bind couples
+  /// all its bodies.
   void couplings(std::vector<std::vector<int>>& groups) const override;
   void add(const model::TermState& state, Eigen::VectorXd& residual,
            solver::SparseAssembler* tangent) override;

@@ -179,6 +179,8 @@ std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, cons
                     "take it out of contact with contact_off)");
       }
       const ConditionSpec& released = conditions[static_cast<std::size_t>(stage.release[i])];
+      if (released.type == ConditionType::bind)
+        reader.fail(reader.list(*release, false)[i], kReleaseBindExpected);
       if (released.bodies.size() > 1 && released.type != ConditionType::load)
         reader.fail(reader.list(*release, false)[i], kReleaseOnSeveralBodiesExpected);
     }

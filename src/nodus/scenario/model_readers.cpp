@@ -20,6 +20,8 @@ std::string_view type_name(ConditionType type) {
       return "rigid";
     case ConditionType::load:
       return "load";
+    case ConditionType::bind:
+      return "bind";
   }
   return "?";
 }
@@ -228,8 +230,9 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
 
     if (const auto bodies = map.get("bodies")) {
       if (condition.type == ConditionType::rigid)
-        reader.fail(*bodies,
-                    "no bodies on a rigid condition (bodies are for clamp, motion and load conditions)");
+        reader.fail(
+            *bodies,
+            "no bodies on a rigid condition (bodies are for clamp, motion, load and bind conditions)");
       for (const char* key : {"beam", "at"})
         if (const auto value = map.get(key))
           reader.fail(*value, fmt::format("no {} next to bodies (the condition acts on the bodies)", key));
@@ -243,6 +246,8 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
           reader.fail(body, "one body for a load condition");
         condition.bodies.push_back(*index);
       }
+      if (condition.type == ConditionType::bind && condition.bodies.size() < 2)
+        reader.fail(*bodies, kBindBodiesExpected);
       const auto pivot = map.get("pivot");
       if (pivot) {
         if (condition.type != ConditionType::motion)
@@ -255,6 +260,11 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
       if (condition.type == ConditionType::load) {
         if (dofs)
           reader.fail(*dofs, "no dofs on a load condition (dofs are for clamp and motion conditions)");
+      } else if (condition.type == ConditionType::bind) {
+        condition.body_dofs = dofs ? read_body_dofs(reader, *dofs) : BodyDofMask{true, true, true};
+        if (dofs &&
+            (condition.body_dofs[kBodyRx] || condition.body_dofs[kBodyRy] || condition.body_dofs[kBodyRz]))
+          reader.fail(*dofs, kBindDofsExpected);
       } else {
         condition.body_dofs =
             dofs ? read_body_dofs(reader, *dofs) : BodyDofMask{true, true, true, true, true, true};
@@ -266,6 +276,7 @@ std::vector<ConditionSpec> read_conditions(const Reader& reader, const MapView& 
       continue;
     }
 
+    if (condition.type == ConditionType::bind) reader.fail(map.require("type"), kBindOnBodiesExpected);
     const Field beam = map.require("beam");
     const auto beam_index = beam_names.find(reader.name(beam));
     if (!beam_index) reader.fail(beam, fmt::format("the name of a beam ({})", name_list(beam_names.names)));

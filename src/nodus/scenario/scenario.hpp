@@ -246,6 +246,7 @@ enum class ConditionType {
   motion,  ///< the selected dofs follow a prescribed translation and rotation of the section (stage targets)
   rigid,   ///< every dof of every node of the beam follows a rigid motion (a tool beam; stage targets)
   load,    ///< dead force on the centre and moment about a fixed axis, applied to the section
+  bind,    ///< two or more bodies' translations held together by a penalty (docs/bodies.md)
 };
 
 /// A named boundary condition on one cross-section (node) of one beam.
@@ -278,17 +279,19 @@ inline std::span<const Key<ConditionSpec>> ConditionSpec::keys() {
       K::doc("conditions[].name", KeyType::string, "", "required", "unique among conditions",
              "name by which stages refer to the condition"),
       K::choice(
-          "conditions[].type", "clamp | motion | rigid | load",
+          "conditions[].type", "clamp | motion | rigid | load | bind",
           [](const ConditionSpec& c) { return static_cast<int>(c.type); },
           [](ConditionSpec& c, int i) { c.type = static_cast<ConditionType>(i); },
           "clamp: keep the dofs at their values on activation; motion: prescribed "
           "translation and rotation; rigid: the whole beam follows a rigid motion (a tool "
-          "beam, never released); load: force and moment")
+          "beam, never released); load: force and moment; bind: the listed translations of two or more "
+          "bodies move together (a penalty, never released)")
           .shown_default("required"),
       K::doc("conditions[].beam", KeyType::string, "", "required without bodies", "naming a beam",
              "the beam the condition acts on"),
       K::doc("conditions[].bodies", KeyType::list, "", "-",
-             "of body names, non-empty, each once; one for a load; not with beam, at or type rigid",
+             "of body names, non-empty, each once; one for a load, two or more for a bind; not with beam, "
+             "at or type rigid",
              "the rigid bodies the condition acts on instead of a beam section (docs/bodies.md): their "
              "point c and rotation; a motion moves them all with one rigid motion about pivot"),
       K::doc("conditions[].at", KeyType::choice, "", "required without bodies",
@@ -302,8 +305,9 @@ inline std::span<const Key<ConditionSpec>> ConditionSpec::keys() {
              "(bodies)"),
       K::doc("conditions[].dofs", KeyType::list, "", "[all]",
              "of at least one of all | position | directors | x | y | z | g1x | g1y | g1z | "
-             "g2x | g2y | g2z; on bodies: all | position | rotation | x | y | z | rx | ry | rz",
-             "clamp and motion only: the constrained dofs, the union of the items (position = "
+             "g2x | g2y | g2z; on bodies: all | position | rotation | x | y | z | rx | ry | rz; "
+             "bind: position | x | y | z, default position",
+             "clamp, motion and bind only: the constrained dofs, the union of the items (position = "
              "x, y, z; directors = the six g*; rotation = rx, ry, rz, a body's rotation vector)"),
       K::flag("conditions[].active", &ConditionSpec::initially_active, "active from the first stage on"),
       K::doc("conditions[].force", KeyType::vector, "N", "[0, 0, 0]", "",

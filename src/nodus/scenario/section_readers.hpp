@@ -32,6 +32,13 @@ constexpr std::string_view kSeparationDistanceExpected =
     "> proximity_distance (neighbouring parts of a beam would be paired)";
 constexpr std::string_view kStabilizationEndExpected =
     "0 when stabilization is 0 (the decay is geometric from stabilization)";
+// A bind holds the translations of several bodies together by a penalty, from activation to the end.
+constexpr std::string_view kBindBodiesExpected = "two or more bodies for a bind condition";
+constexpr std::string_view kBindDofsExpected = "dofs among position | x | y | z for a bind condition";
+constexpr std::string_view kBindOnBodiesExpected =
+    "a type other than bind without bodies (a bind holds the translations of two or more bodies together)";
+constexpr std::string_view kReleaseBindExpected =
+    "a condition that is not a bind (a bind holds its bodies together to the end of the run)";
 // A clamp or motion of several bodies holds them together; it is not released as a whole.
 constexpr std::string_view kReleaseOnSeveralBodiesExpected =
     "a condition on one body (a clamp or motion of several bodies is released body by body: give each "

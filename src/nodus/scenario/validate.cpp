@@ -265,10 +265,15 @@ void check_conditions(const Checker& check, const Scenario& s, AxisCheck& axes) 
       }
       if (condition.type == ConditionType::rigid)
         check.fail(at + ".bodies",
-                   "no bodies on a rigid condition (bodies are for clamp, motion and load conditions)",
+                   "no bodies on a rigid condition (bodies are for clamp, motion, load and bind conditions)",
                    "a list");
       if (condition.type == ConditionType::load && condition.bodies.size() != 1)
         check.fail(at + ".bodies", "one body for a load condition", std::to_string(condition.bodies.size()));
+      if (condition.type == ConditionType::bind && condition.bodies.size() < 2)
+        check.fail(at + ".bodies", kBindBodiesExpected, std::to_string(condition.bodies.size()));
+      if (condition.type == ConditionType::bind &&
+          (condition.body_dofs[kBodyRx] || condition.body_dofs[kBodyRy] || condition.body_dofs[kBodyRz]))
+        check.fail(at + ".dofs", kBindDofsExpected, "a rotation");
       if (condition.pivot && condition.type != ConditionType::motion)
         check.fail(at + ".pivot", "no pivot on a clamp or load condition", format_vec(*condition.pivot));
       if (condition.pivot && !condition.pivot->allFinite())
@@ -291,6 +296,7 @@ void check_conditions(const Checker& check, const Scenario& s, AxisCheck& axes) 
       }
       continue;
     }
+    if (condition.type == ConditionType::bind) check.fail(at + ".type", kBindOnBodiesExpected, "bind");
     check.index(at + ".beam", condition.beam, s.beams.size(), "beams");
     const BeamSpec& beam = s.beams[static_cast<std::size_t>(condition.beam)];
     const std::string_view type = type_name(condition.type);
@@ -395,6 +401,7 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
             "a condition that is not rigid (a tool beam stays where its motion puts it; take it out of "
             "contact with contact_off)",
             condition.name);
+      if (condition.type == ConditionType::bind) check.fail(path, kReleaseBindExpected, condition.name);
       if (condition.bodies.size() > 1 && condition.type != ConditionType::load)
         check.fail(path, kReleaseOnSeveralBodiesExpected, condition.name);
     }

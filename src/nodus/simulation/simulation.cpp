@@ -61,6 +61,10 @@ loading::Conditions build_conditions(const scenario::Scenario& s, const model::M
       if (spec.type == scenario::ConditionType::load) {
         const loading::Vec3 axis = moment_axis(s, c);
         conditions.add_body_load(spec.name, bodies.front(), spec.force, axis, spec.moment.dot(axis));
+      } else if (spec.type == scenario::ConditionType::bind) {
+        loading::DofMask mask{};
+        for (std::size_t d = 0; d < 3; ++d) mask[d] = spec.body_dofs[d];
+        conditions.add_body_bind(spec.name, std::move(bodies), mask, 0.0);  // stiffness: the bodies' penalty
       } else {
         loading::DofMask mask{};
         for (std::size_t d = 0; d < spec.body_dofs.size(); ++d) mask[d] = spec.body_dofs[d];
@@ -98,7 +102,9 @@ void check_stages(const scenario::Scenario& s, const model::Model& model,
     std::vector<int> owner(static_cast<std::size_t>(model.num_dofs()), -1);
     for (std::size_t c = 0; c < s.conditions.size(); ++c) {
       const scenario::ConditionSpec& spec = s.conditions[c];
-      if (!active[c] || spec.type == scenario::ConditionType::load) continue;
+      if (!active[c] || spec.type == scenario::ConditionType::load ||
+          spec.type == scenario::ConditionType::bind)
+        continue;
       if (!spec.bodies.empty()) {
         for (int b : spec.bodies)
           for (int d = 0; d < 6; ++d) {
@@ -233,6 +239,14 @@ Simulation::Simulation(scenario::Scenario scenario)
     }
     averaged_ = static_cast<model::AveragedConditionsTerm*>(
         &problem_->add_term(std::make_unique<model::AveragedConditionsTerm>(model_, penalties, ties)));
+    // A bind's stiffness is the mean of its bodies' penalty stiffness k (docs/bodies.md).
+    for (int c = 0; c < conditions_.size(); ++c) {
+      const scenario::ConditionSpec& spec = scenario_.conditions[static_cast<std::size_t>(c)];
+      if (spec.type != scenario::ConditionType::bind) continue;
+      double k = 0.0;
+      for (int b : spec.bodies) k += averaged_->penalty(b) / static_cast<double>(spec.bodies.size());
+      conditions_.set_bind_stiffness(c, k);
+    }
   }
   if (scenario_.contact.enabled) {
     contact_enabled_ = true;
