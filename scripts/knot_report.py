@@ -249,18 +249,34 @@ def pull_force(last_step):
     return float(np.linalg.norm(components)) if None not in components else np.nan
 
 
+def knot_type(points):
+    """The knot type of the polyline `points` (n, 3) closed far away (nodus.knot_invariant): trefoil, unknot,
+    else the Alexander polynomial; unknown where every projection has a near-crossing."""
+    try:
+        invariant = nodus.knot_invariant(points)
+        return ("trefoil" if invariant["trefoil"] else "unknot" if invariant["unknot"]
+                else invariant["polynomial"])
+    except RuntimeError:  # no projection without a near-crossing: a curve that touches itself
+        return "unknown"
+
+
+def reactions_of(m, contact):
+    """The reactions table (REACTION_COLUMNS, as a dict of columns) of nodus.knot_metrics's result `m` for the
+    contact table `contact`."""
+    r = m["reactions"]
+    mid = r["midpoint"]
+    return {"zone": r["zone"], "zeta": r["zeta"], "abscissa_mm": r["abscissa"], "s_i": r["s_i"],
+            "s_j": r["s_j"], "x": mid[:, 0], "y": mid[:, 1], "z": mid[:, 2], "normal_N": r["normal"],
+            "tangential_N": r["tangential"], "state": contact["state"][np.asarray(r["element"], int)]}
+
+
 def analyse(state):
     """(row of knot_report.csv as a dict, reactions table as a dict of columns, (s_a, s_b)): the knot metrics
     of nodus (nodus.knot_metrics, src/nodus/analysis/knot_metrics.hpp) with the definitions above."""
     contact = state.contact
     m = nodus.knot_metrics(nodes_polyline(state.nodes), contact, tail_chord=TAIL_CHORD, min_spacing=MIN_SPACING,
                            min_loop_nodes=MIN_LOOP_NODES)
-    try:
-        invariant = nodus.knot_invariant(nodes_polyline(state.nodes)[0])
-        knot = ("trefoil" if invariant["trefoil"] else "unknot" if invariant["unknot"]
-                else invariant["polynomial"])
-    except RuntimeError:  # no projection without a near-crossing: a curve that touches itself
-        knot = "unknown"
+    knot = knot_type(nodes_polyline(state.nodes)[0])
     row = {
         "state": state.name,
         "friction": state.friction,
@@ -281,12 +297,7 @@ def analyse(state):
         "loop_length_mm": m["loop_length"],
         "max_penetration_mm": m["max_penetration"],
     }
-    r = m["reactions"]
-    mid = r["midpoint"]
-    reactions = {"zone": r["zone"], "zeta": r["zeta"], "abscissa_mm": r["abscissa"], "s_i": r["s_i"],
-                 "s_j": r["s_j"], "x": mid[:, 0], "y": mid[:, 1], "z": mid[:, 2], "normal_N": r["normal"],
-                 "tangential_N": r["tangential"], "state": contact["state"][np.asarray(r["element"], int)]}
-    return row, reactions, (m["s_a"], m["s_b"])
+    return row, reactions_of(m, contact), (m["s_a"], m["s_b"])
 
 
 def format_value(value):
@@ -324,12 +335,15 @@ def save_figure(fig, path):
     return written
 
 
-def markdown_table(rows):
-    lines = ["| " + " | ".join(REPORT_COLUMNS) + " |", "|" + "---|" * len(REPORT_COLUMNS)]
+def table_cell(value):
+    """A value as printed in the markdown table: finite floats to 4 significant digits."""
+    return format_value(float(f"{value:.4g}") if isinstance(value, float) and np.isfinite(value) else value)
+
+
+def markdown_table(rows, columns=REPORT_COLUMNS):
+    lines = ["| " + " | ".join(columns) + " |", "|" + "---|" * len(columns)]
     for row in rows:
-        cells = [format_value(float(f"{v:.4g}") if isinstance(v, float) and np.isfinite(v) else v)
-                 for v in (row[c] for c in REPORT_COLUMNS)]
-        lines.append("| " + " | ".join(cells) + " |")
+        lines.append("| " + " | ".join(table_cell(row[c]) for c in columns) + " |")
     return "\n".join(lines)
 
 

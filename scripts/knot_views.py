@@ -21,6 +21,12 @@ Each holds the whole rod (left) and, when the rod is in contact with itself, the
 nodes with s in [s_a - 1, s_b + 1] mm, s_a and s_b the smallest and largest abscissa_i, abscissa_j of the
 self-contact elements with normal_force > 0.
 
+The knotted strand may be several beams (render_run(..., strands=NAMES, separation=D), as
+scripts/knot_3x1_report.py draws the fibres of a yarn): each is then drawn in a colour of its own (blue,
+amber, green, ...), and the knot's contact elements are those between two of them, or of one with itself,
+whose abscissas lie more than D apart (the fibres' side-by-side contacts are not the knot's); the knot panel
+shows every strand's nodes with s in [s_a - 1, s_b + 1] mm.
+
 What is drawn:
   tube      the surface r(s) + R (cos phi e1 + sin phi e2) through the nodes of each beam (straight between
             nodes, `--sides` facets around, closed at the ends). (e1, e2) is a parallel-transport frame
@@ -75,6 +81,10 @@ BAR_LENGTH = 2.5            # longest reaction bar, in rod radii
 DEFAULT_ELEV, DEFAULT_AZIM = 60.0, -80.0   # degrees
 DEFAULT_SIDES = 14          # facets around the tube
 ROD_RGB = np.array([0.25, 0.47, 0.78])
+STRAND_COLOURS = [("blue", ROD_RGB), ("amber", np.array([0.88, 0.58, 0.16])),
+                  ("green", np.array([0.30, 0.64, 0.36])), ("purple", np.array([0.58, 0.40, 0.74])),
+                  ("brown", np.array([0.60, 0.42, 0.30])), ("pink", np.array([0.86, 0.45, 0.66])),
+                  ("olive", np.array([0.62, 0.62, 0.22])), ("cyan", np.array([0.25, 0.70, 0.76]))]
 TOOL_RGB = np.array([0.62, 0.62, 0.62])
 LINE_RGB = (0.55, 0.0, 0.0)  # the intermediate geometry, dark red as in Fig. 13
 STRIPE_SHADE = 0.55         # the director stripe: the tube's colour times this
@@ -174,6 +184,19 @@ def read_contact(path):
 def rod_of(beams):
     """The beam named `rod`, else the first one."""
     return next((b for b in beams if b.name == "rod"), beams[0])
+
+
+def strands_of(beams, names=None):
+    """The beams of the knotted strand: those named in `names` (in the table's order), else (names None, or
+    none of them in the table) [rod_of(beams)]."""
+    strands = [b for b in beams if names is not None and b.name in names]
+    return strands or [rod_of(beams)]
+
+
+def strand_colour(k, count):
+    """(name, rgb) of strand k of `count`: the rod's blue for a single strand, else the k-th of
+    STRAND_COLOURS (cycled)."""
+    return STRAND_COLOURS[0] if count == 1 else STRAND_COLOURS[k % len(STRAND_COLOURS)]
 
 
 def centreline_at(beam, s):
@@ -476,47 +499,74 @@ def intermediate_lines(contact):
     return [mid[contact["zone"] == zone] for zone in np.unique(contact["zone"])], mid
 
 
-def self_contact_extent(rod, contact):
-    """(s_a, s_b) of the rod's self-contact elements with R_N > 0, or None."""
+def knot_rows(contact, names, separation=0.0):
+    """Mask of the knot's contact elements: between two beams of `names` (the strands) that are one beam
+    (a self-contact) or whose abscissas lie more than `separation` [mm] apart (two fibres of a yarn side by
+    side are not the knot's contact)."""
+    names = np.asarray(list(names), dtype=str)
+    strands = np.isin(contact["beam_i"], names) & np.isin(contact["beam_j"], names)
+    apart = np.abs(contact["abscissa_i"] - contact["abscissa_j"]) > separation
+    return strands & ((contact["beam_i"] == contact["beam_j"]) | apart)
+
+
+def knot_extent(strands, contact, separation=0.0):
+    """(s_a, s_b) of the knot's contact elements (knot_rows) with R_N > 0, or None."""
     if contact is None:
         return None
-    rows = (contact["beam_i"] == rod.name) & (contact["beam_j"] == rod.name) & (contact["normal_force"] > 0)
+    rows = knot_rows(contact, [b.name for b in strands], separation) & (contact["normal_force"] > 0)
     if not rows.any():
         return None
     s = np.concatenate([contact["abscissa_i"][rows], contact["abscissa_j"][rows]])
     return float(s.min()), float(s.max())
 
 
-def draw_panel(ax, beams, rod, contact, radius, sides, elev, azim, knot=None):
-    """One 3D panel: every beam (knot None) or the rod's nodes with s in `knot` (s_a - m, s_b + m), with
-    the intermediate geometry and (knot panel) the reaction bars. Returns (the ScalarMappable of the
-    reaction colours or None, the points to frame)."""
+def draw_tube_panel(ax, pieces, shown, radius, sides, elev, azim):
+    """Sets up a 3D panel (orthographic, seen from `elev`, `azim`, no axes, an equal box around the points
+    `shown` padded by 1.5 radius) and draws the tube `pieces` in it."""
     view, light = view_vectors(elev, azim)
     ax.view_init(elev=elev, azim=azim)
     ax.set_proj_type("ortho")
     ax.set_axis_off()
     ax.computed_zorder = False
+    set_equal_box(ax, shown, radius * 1.5)
+    draw_tubes(ax, pieces, radius, sides, view, light)
+
+
+def draw_ends(ax, beam, knot=None):
+    """End A (triangle) and end B (square) of `beam`, those within `knot` (s range) if given."""
+    if knot is None or (beam.s[0] >= knot[0]):
+        ax.plot(*beam.r[0][:, None], marker="^", color="k", ms=5, zorder=5, clip_on=False)   # end A
+    if knot is None or (beam.s[-1] <= knot[1]):
+        ax.plot(*beam.r[-1][:, None], marker="s", color="k", ms=5, zorder=5, clip_on=False)  # end B
+
+
+def draw_panel(ax, beams, strands, contact, radius, sides, elev, azim, knot=None, separation=0.0):
+    """One 3D panel: every beam (knot None; the strands in their colours, the others grey) or the strands'
+    nodes with s in `knot` (s_a - m, s_b + m), with the intermediate geometry and (knot panel: of the
+    knot's contact elements, knot_rows) the reaction bars. Returns (the ScalarMappable of the reaction
+    colours or None, the points to frame)."""
+    names = [b.name for b in strands]
     pieces = []
     if knot is None:
         for beam in beams:
-            rgb = ROD_RGB if beam is rod else TOOL_RGB
+            rgb = strand_colour(names.index(beam.name), len(names))[1] if beam.name in names else TOOL_RGB
             pieces += pieces_of(beam, np.ones(len(beam.s), bool), rgb, 1.0)
         shown = np.concatenate([b.r for b in beams])
     else:
-        keep = (rod.s >= knot[0]) & (rod.s <= knot[1])
-        pieces += pieces_of(rod, keep, ROD_RGB, KNOT_ALPHA)
-        shown = rod.r[keep]
-    set_equal_box(ax, shown, radius * 1.5)
-    draw_tubes(ax, pieces, radius, sides, view, light)
-    if knot is None or (rod.s[0] >= knot[0]):
-        ax.plot(*rod.r[0][:, None], marker="^", color="k", ms=5, zorder=5, clip_on=False)   # end A
-    if knot is None or (rod.s[-1] <= knot[1]):
-        ax.plot(*rod.r[-1][:, None], marker="s", color="k", ms=5, zorder=5, clip_on=False)  # end B
+        shown = []
+        for k, strand in enumerate(strands):
+            keep = (strand.s >= knot[0]) & (strand.s <= knot[1])
+            pieces += pieces_of(strand, keep, strand_colour(k, len(strands))[1], KNOT_ALPHA)
+            shown.append(strand.r[keep])
+        shown = np.concatenate(shown)
+    draw_tube_panel(ax, pieces, shown, radius, sides, elev, azim)
+    for strand in strands:
+        draw_ends(ax, strand, knot)
     mappable = None
     if contact is not None and len(contact["zone"]):
         rows = np.ones(len(contact["zone"]), bool)
         if knot is not None:
-            rows = (contact["beam_i"] == rod.name) & (contact["beam_j"] == rod.name)
+            rows = knot_rows(contact, names, separation)
         part = {k: v[rows] for k, v in contact.items()}
         lines, mid = intermediate_lines(part)
         for line in lines:
@@ -566,32 +616,46 @@ def frame_panel(ax, points, elev, azim):
     ax.set_box_aspect(ax._box_aspect, zoom=zoom)      # from 1: the scale in pixels per mm grows by zoom
     return rect, unit[0] * zoom
 
+
+def strands_title(beams, strands):
+    """Title of the whole panel: `whole rod`, or the strands with their colours."""
+    if len(strands) == 1:
+        return "whole rod" + (", other beams grey" if len(beams) > 1 else "")
+    names = ", ".join(f"{b.name} ({strand_colour(k, len(strands))[0]})" for k, b in enumerate(strands))
+    return names + (", other beams grey" if len(beams) > len(strands) else "")
+
+
 def render_state(state, out_path, radius=None, sides=DEFAULT_SIDES, elev=DEFAULT_ELEV, azim=DEFAULT_AZIM,
-                 dpi=DPI):
+                 dpi=DPI, strands=None, separation=0.0):
     """Draws one state into out_path (PNG): the whole rod, and the knot when the rod touches itself.
     The panels' heights follow the proportions of what they show on screen, and each is zoomed so that it
     fills 90 % of its panel's width or height (matplotlib leaves room for the whole 3D box, corners
-    included, which wastes most of a flat one), centred."""
+    included, which wastes most of a flat one), centred. `strands` (names, e.g. the fibres of a yarn) and
+    `separation` [mm]: the knotted strand is those beams (strands_of), the knot's contact elements knot_rows."""
     beams = read_beams(state.nodes)
     contact = read_contact(state.contact)
-    rod = rod_of(beams)
+    strands = strands_of(beams, strands)
     if radius is None:
         radius = measured_radius(beams, contact) or DEFAULT_RADIUS
-    extent = self_contact_extent(rod, contact)
+    extent = knot_extent(strands, contact, separation)
     width = 8.0 if extent is None else 13.0
     # Panels as (left, width) in figure fractions; the colour bar to the right of the knot panel.
     columns = [(0.0, 1.0)] if extent is None else [(0.0, 0.36), (0.37, 0.55)]
     fig = plt.figure(figsize=(width, 6.0))
     fig.suptitle(state.title)
     axes = [fig.add_axes([left, 0.0, w, 0.8], projection="3d") for left, w in columns]
-    shown = [draw_panel(axes[0], beams, rod, contact, radius, sides, elev, azim)[1]]
-    titles = ["whole rod" + (", other beams grey" if len(beams) > 1 else "")]
+    shown = [draw_panel(axes[0], beams, strands, contact, radius, sides, elev, azim)[1]]
+    titles = [strands_title(beams, strands)]
     bar = None
     if extent is not None:
         knot = (extent[0] - KNOT_MARGIN, extent[1] + KNOT_MARGIN)
-        mappable, points = draw_panel(axes[1], beams, rod, contact, radius, sides, elev, azim, knot)
+        mappable, points = draw_panel(axes[1], beams, strands, contact, radius, sides, elev, azim, knot,
+                                      separation)
         shown.append(points)
-        titles.append(f"the knot, s from {knot[0]:.2f} to {knot[1]:.2f} mm: intermediate geometry (dark "
+        what = ("intermediate geometry" if len(strands) == 1 else
+                f"intermediate geometries of the contacts\nbetween parts of the knot (|s_i - s_j| > "
+                f"{separation:g} mm or one fibre)")
+        titles.append(f"the knot, s from {knot[0]:.2f} to {knot[1]:.2f} mm: {what} (dark "
                       f"red), normal reactions\nas bars along the contact normal (length and colour: R_N; "
                       f"longest {BAR_LENGTH:g} R)")
         if mappable is not None:
