@@ -326,6 +326,10 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
             {"name": f"tension{k}", "type": "load", "bodies": [f"yarn.r{k}.end"], "force": [0.05, 0, 0]},
             {"name": f"pull_b{k}", "type": "load", "bodies": [f"yarn.r{k}.end"], "active": False}]
         twist_motions[f"turn{k}"] = {"rotation": [YARN_TWIST, 0, 0]}
+    # From the pull on, end B's bodies move together along x (a bind, docs/bodies.md): the force drives the
+    # yarn's end, not each fibre alone, and no fibre can slide out of the knot on its own in the releases.
+    conditions.append({"name": "bind_b", "type": "bind", "bodies": [f"yarn.r{k}.end" for k in range(1, m + 1)],
+                       "dofs": ["x"], "active": False})
 
     def per_body(motions):
         return {f"{end}{k}": target for end, target in motions.items() for k in range(1, m + 1)}
@@ -360,10 +364,11 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
         {"name": "unclamp", "steps": 4, "stabilization": stabilization, "contact_off": ["clamp_top", "clamp_bottom"],
          "motions": unclamp},
         # End B is pulled along x through a guide: the bodies keep the position across x and the rotation
-        # that `thread` left them (the twist's conditions turn and keep, taken again), each pulled by F / 3.
+        # that `thread` left them (the twist's conditions turn and keep, taken again), each pulled by F / 3,
+        # and bound together along x.
         {"name": "pull", "steps": 40, "stabilization": stabilization,
          "release": [f"end_b{k}" for k in range(1, m + 1)],
-         "activate": [f"{c}{k}" for c in ("pull_b", "turn", "keep") for k in range(1, m + 1)],
+         "activate": [f"{c}{k}" for c in ("pull_b", "turn", "keep") for k in range(1, m + 1)] + ["bind_b"],
          "loads": {f"pull_b{k}": {"force": [num(force / m), 0, 0]} for k in range(1, m + 1)}},
         {"name": "settle", "steps": 16, "duration": 8, "stabilization": stabilization}]
 
@@ -433,7 +438,8 @@ YARN_HEADER = """\
 #  thread:  end B dives under the loop, comes up through it and leaves over its far side, while end A feeds
 #           yarn into the loop (no clamping beams, unlike the paper);
 #  pull:    end B is let go along x and a force of {force:g} N (a third on each fibre) pulls it; its bodies keep
-#           their position across x and their rotation; end A stays clamped;
+#           their position across x and their rotation, and move together along x (bind_b); end A stays
+#           clamped;
 #  settle:  the force held until the knot stops moving: the tightened knot (Fig. 19);
 #  branches mu_*: from the tightened knot, the force decreases to 0 (release), then the drag decays to 0
 #           (rest): the released knots (Figs. 20, 21).
