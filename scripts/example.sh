@@ -15,5 +15,8 @@ if [ "$(basename "$scenario" .yaml)" = monofilament_knot ]; then
   # Debian's python3 (with python3-numpy and python3-matplotlib from scripts/setup.sh).
   PYTHONPATH=build/release/python /usr/bin/python3 scripts/knot_report.py "$out"
   echo "report: $out/report (knot_report.csv, reactions_*.csv, fig12/14/15/17 PNG files)"
+elif [ "$(basename "$scenario" .yaml)" = knot_3x1 ]; then
+  PYTHONPATH=build/release/python /usr/bin/python3 scripts/knot_3x1_report.py "$out"
+  echo "report: $out/report (knot_3x1_report.csv, reactions_*.csv, fig19/20/21 and view3d_* PNG files)"
 fi
 echo "results: $out (summary.json, steps.csv, final_nodes.csv, stages/, branches/; open $out/result.pvd in ParaView)"

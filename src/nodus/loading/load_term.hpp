@@ -21,7 +21,8 @@ class LoadTerm final : public model::Term {
            solver::SparseAssembler* tangent) override;
   /// Moment angles count their turns.
   void commit(const model::TermState& state) override { conditions_.commit(state.x); }
-  /// applied: |f_ext| at the last evaluation.
+  /// applied: |f_ext| at the last evaluation, the binds' forces included (constraint forces, as the support
+  /// reactions that also set the force scale).
   model::ResidualScale residual_scale() const override { return {applied_, 0.0, 0.0}; }
 
  private:
