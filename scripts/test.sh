@@ -2,7 +2,7 @@
 # Quick start, second command: installs what is missing, builds and runs the tests twice: Release, then Debug
 # with AddressSanitizer and UndefinedBehaviorSanitizer at -O1 (without the tests labelled `long`, the knot
 # runs, which would take tens of minutes under the sanitizers; their code paths are covered by the shorter
-# tests). Tests labelled `slow` (the Python friction-sweep example, minutes) are left out of both:
+# tests). Tests labelled `slow` (the Python friction-sweep example and the 3x1 knot, minutes) are left out of both:
 # `ctest --test-dir build/release -L slow` runs them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
