@@ -260,12 +260,7 @@ def draw_yarn_panel(ax, beams, fibres, contact, knot, radius, elev, azim):
     """The fibres as tubes in their colours (other beams grey) and the intermediate geometries of the elements
     in contact (contact_runs); returns the points to frame."""
     strands = kv.strands_of(beams, fibres)
-    names = [b.name for b in strands]
-    pieces = []
-    for beam in beams:
-        rgb = kv.strand_colour(names.index(beam.name), len(names))[1] if beam.name in names else kv.TOOL_RGB
-        pieces += kv.pieces_of(beam, np.ones(len(beam.s), bool), rgb, 1.0)
-    shown = np.concatenate([b.r for b in beams])
+    pieces, shown = kv.whole_pieces(beams, strands)
     kv.draw_tube_panel(ax, pieces, shown, radius, kv.DEFAULT_SIDES, elev, azim)
     for strand in strands:
         kv.draw_ends(ax, strand)
@@ -404,7 +399,7 @@ def main(argv):
         report(args.run_dir, args.out or args.run_dir / "report", args.yarn, args.separation)
     except kr.ReportError as e:
         print(f"knot_3x1_report: {e}", file=sys.stderr)
-        return 1
+        return 2
     return 0
 
 

@@ -605,7 +605,7 @@ def main(argv):
         report(run_dir)
     except ReportError as e:
         print(f"knot_report: {e}", file=sys.stderr)
-        return 1
+        return 2
     return 0
 
 

@@ -540,20 +540,26 @@ def draw_ends(ax, beam, knot=None):
         ax.plot(*beam.r[-1][:, None], marker="s", color="k", ms=5, zorder=5, clip_on=False)  # end B
 
 
+def whole_pieces(beams, strands):
+    """(tube pieces, points to frame) of every beam whole: the strands in their colours, the others grey."""
+    names = [b.name for b in strands]
+    pieces = []
+    for beam in beams:
+        rgb = strand_colour(names.index(beam.name), len(names))[1] if beam.name in names else TOOL_RGB
+        pieces += pieces_of(beam, np.ones(len(beam.s), bool), rgb, 1.0)
+    return pieces, np.concatenate([b.r for b in beams])
+
+
 def draw_panel(ax, beams, strands, contact, radius, sides, elev, azim, knot=None, separation=0.0):
     """One 3D panel: every beam (knot None; the strands in their colours, the others grey) or the strands'
     nodes with s in `knot` (s_a - m, s_b + m), with the intermediate geometry and (knot panel: of the
     knot's contact elements, knot_rows) the reaction bars. Returns (the ScalarMappable of the reaction
     colours or None, the points to frame)."""
     names = [b.name for b in strands]
-    pieces = []
     if knot is None:
-        for beam in beams:
-            rgb = strand_colour(names.index(beam.name), len(names))[1] if beam.name in names else TOOL_RGB
-            pieces += pieces_of(beam, np.ones(len(beam.s), bool), rgb, 1.0)
-        shown = np.concatenate([b.r for b in beams])
+        pieces, shown = whole_pieces(beams, strands)
     else:
-        shown = []
+        pieces, shown = [], []
         for k, strand in enumerate(strands):
             keep = (strand.s >= knot[0]) & (strand.s <= knot[1])
             pieces += pieces_of(strand, keep, strand_colour(k, len(strands))[1], KNOT_ALPHA)

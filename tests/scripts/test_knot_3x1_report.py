@@ -346,7 +346,7 @@ class KnotThreeByOneReportTest(unittest.TestCase):
     def test_unknown_yarn_fails_with_one_line(self):
         result = subprocess.run([sys.executable, str(SCRIPT), str(self.run_dir), "--yarn", "rope",
                                  "--out", str(self.tmp / "none")], capture_output=True, text=True, timeout=120)
-        self.assertNotEqual(result.returncode, 0)
+        self.assertEqual(result.returncode, 2)  # bad input: status 2
         lines = result.stderr.strip().splitlines()
         self.assertEqual(len(lines), 1, result.stderr)
         self.assertTrue(lines[0].startswith("knot_3x1_report: "), lines[0])

@@ -376,7 +376,7 @@ class KnotReportTest(unittest.TestCase):
                     write_table(run_dir / "contact_final.csv",
                                 [c for c in CONTACT_HEADER if c != "normal_force"], contact_rows)
                 result = self.run_script(run_dir)
-                self.assertNotEqual(result.returncode, 0)
+                self.assertEqual(result.returncode, 2)  # bad input: status 2
                 lines = result.stderr.strip().splitlines()
                 self.assertEqual(len(lines), 1, result.stderr)
                 self.assertTrue(lines[0].startswith("knot_report: "), lines[0])
