@@ -4,6 +4,9 @@
 //                                         --jobs at a time, each in a process of its own: nodus run --branch)
 //   nodus run SCENARIO.yaml --out DIR --resume
 //                                         continue an interrupted run from its newest checkpoint in DIR
+//   mpirun -n N nodus run SCENARIO.yaml --out DIR [-ksp_view ...]
+//                                         the same on N MPI ranks (solver.linear_solver: petsc; PETSc's own
+//                                         -ksp_*, -pc_*, -mat_* options go to PETSc; docs/parallel.md)
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
 //   nodus keys                            print the table of scenario keys (markdown)
 //   nodus knot NODES.csv                  knot type and smallest self-distance of a beam in a nodal table
@@ -21,6 +24,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
@@ -34,6 +38,7 @@
 #include "nodus/analysis/knot.hpp"
 #include "nodus/output/final_nodes_table.hpp"
 #include "nodus/output/logging.hpp"
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/run/run.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
@@ -114,16 +119,18 @@ int knot(const std::string& path, std::vector<std::string> beams, const std::str
   return 0;
 }
 
-}  // namespace
+/// Prints a message on stderr, once: on rank 0 under MPI (every rank meets the same bad input).
+void report(const std::string& message) {
+  if (nodus::parallel::is_root()) std::fprintf(stderr, "nodus: %s\n", message.c_str());
+}
 
-int main(int argc, char** argv) {
-  const bool passive_wait_set_here = prefer_passive_openmp_wait(argv);
-  nodus::output::use_stderr_logger();
+/// The command line without its PETSc options; `passive_wait_set_here`: for the log.
+int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
   CLI::App app{"nodus: contact-friction mechanics of elastic beam assemblies (units: mm, N, MPa, s)"};
   app.require_subcommand(1);
   nodus::run::Request request;
-  // Branches side by side run in processes of this executable.
-  request.branch_executable = "/proc/self/exe";
+  // Branches side by side run in processes of this executable; under MPI every rank runs them in turn.
+  if (nodus::parallel::size() == 1) request.branch_executable = "/proc/self/exe";
   std::string& scenario_path = request.scenario_path;
   bool verbose = false;
 
@@ -180,10 +187,16 @@ int main(int argc, char** argv) {
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
-    const int code = app.exit(e);
+    std::ostringstream out, err;
+    const int code = app.exit(e, out, err);
+    if (nodus::parallel::is_root()) {
+      std::fputs(out.str().c_str(), stdout);
+      std::fputs(err.str().c_str(), stderr);
+    }
     return code == 0 ? 0 : kBadInput;
   }
   if (verbose) spdlog::set_level(spdlog::level::debug);
+  if (!nodus::parallel::is_root()) spdlog::set_level(spdlog::level::off);  // rank 0 logs for all
   const char* wait_policy = std::getenv("OMP_WAIT_POLICY");
   spdlog::debug("OpenMP wait policy: OMP_WAIT_POLICY={}{}", wait_policy ? wait_policy : "(unset)",
                 passive_wait_set_here ? " (set by nodus)" : "");
@@ -191,30 +204,62 @@ int main(int argc, char** argv) {
 
   try {
     if (app.got_subcommand("keys")) {
-      std::fputs(nodus::scenario::scenario_keys_markdown().c_str(), stdout);
+      if (nodus::parallel::is_root()) std::fputs(nodus::scenario::scenario_keys_markdown().c_str(), stdout);
       return 0;
     }
     if (app.got_subcommand("knot")) {
       try {
-        return knot(nodes_path, knot_beams, knot_yarn, separation);
+        return nodus::parallel::is_root() ? knot(nodes_path, knot_beams, knot_yarn, separation) : 0;
       } catch (const std::invalid_argument& e) {
-        std::fprintf(stderr, "nodus: %s\n", e.what());
+        report(e.what());
         return kBadInput;
       }
     }
     if (app.got_subcommand("check")) {
       const nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(scenario_path);
       nodus::simulation::Simulation sim(scenario);
-      std::fputs(nodus::scenario::describe(scenario).c_str(), stdout);
+      if (nodus::parallel::is_root()) std::fputs(nodus::scenario::describe(scenario).c_str(), stdout);
       return 0;
     }
     const nodus::run::Outcome outcome = nodus::run::run(request);
     return outcome.converged && !outcome.interrupted ? 0 : kNotConverged;
   } catch (const nodus::scenario::ScenarioError& e) {
+    report(e.what());  // every rank read the same input and stops here
+    return kBadInput;
+  } catch (const std::exception& e) {
+    // This rank alone may have failed (a disk full on rank 0): the others would wait for it for ever.
+    std::fprintf(
+        stderr, "nodus: error%s: %s\n",
+        nodus::parallel::size() > 1 ? fmt::format(" on rank {}", nodus::parallel::rank()).c_str() : "",
+        e.what());
+    nodus::parallel::abort_all(1);
+    return 1;
+  }
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const bool passive_wait_set_here = prefer_passive_openmp_wait(argv);
+  nodus::output::use_stderr_logger();
+  // PETSc's own options (-ksp_*, -pc_*, -mat_*) go to PETSc, the rest to nodus's command line. MPI and PETSc
+  // start here when an MPI launcher started this process or PETSc options were given, else only if a solver
+  // needs them (one process).
+  const nodus::parallel::SplitArguments split = nodus::parallel::split_petsc_options(argc, argv);
+  try {
+    if (nodus::parallel::launched_by_mpi() || !split.petsc.empty()) nodus::parallel::initialize(split.petsc);
+  } catch (const std::invalid_argument& e) {
     std::fprintf(stderr, "nodus: %s\n", e.what());
     return kBadInput;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "nodus: error: %s\n", e.what());
     return 1;
   }
+  std::vector<std::string> words = split.rest;
+  std::vector<char*> rest;
+  for (std::string& w : words) rest.push_back(w.data());
+  rest.push_back(nullptr);
+  const int code = nodus_main(static_cast<int>(words.size()), rest.data(), passive_wait_set_here);
+  nodus::parallel::finalize();
+  return code;
 }

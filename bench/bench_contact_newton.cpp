@@ -20,45 +20,17 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bundle_problem.hpp"
 #include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
 #include "nodus/solver/linear_solver.hpp"
-#include "twisted_bundle.hpp"
 
 namespace {
 
 using nodus::beam::kNodeDofs;
 
-struct Setup {
-  nodus::bench::Bundle bundle;
-  nodus::loading::Conditions conditions;
-  std::unique_ptr<nodus::simulation::EquilibriumProblem> problem;
-  nodus::contact::ContactGeometry geometry;
-
-  explicit Setup(int fibres) : bundle(nodus::bench::twisted_bundle(fibres, 100, 10.0, 0.1, 1.99)) {
-    const nodus::model::Model& model = bundle.model;
-    const nodus::loading::DofMask all{true, true, true, true, true, true, true, true, true};
-    for (int f = 0; f < fibres; ++f) {
-      const nodus::beam::Beam& beam = model.beam(f);
-      for (int node : {beam.node(0), beam.node(beam.num_nodes() - 1)})
-        conditions.activate(conditions.add_motion("end", node, all), 0.0, bundle.x);
-    }
-    problem = std::make_unique<nodus::simulation::EquilibriumProblem>(model, conditions,
-                                                                      nodus::simulation::Tolerances{});
-    problem->set_time(0.0);
-    const std::vector<bool> prescribed = conditions.prescribed(model.num_dofs());
-    Eigen::VectorXd u(problem->size());
-    for (int i = 0, k = 0; i < model.num_dofs(); ++i)
-      if (!prescribed[static_cast<std::size_t>(i)]) u[k++] = bundle.x[i];
-    problem->set_unknowns(u);
-    geometry = nodus::contact::detect(model, bundle.x, {});
-    // The default laws of a run: k0 = E R, p_max = 0.02 R, p_reg = p_max / 10.
-    problem->set_contact_laws(0.0002, std::nullopt);
-    problem->set_contact(geometry, std::vector<double>(geometry.zones.size(), 400.0),
-                         std::vector<Eigen::Vector3d>(geometry.elements.size(), Eigen::Vector3d::Zero()));
-  }
-};
+using nodus::bench::Setup;
 
 void set_counters(benchmark::State& state, const Setup& s) {
   state.counters["zones"] = static_cast<double>(s.geometry.zones.size());

@@ -20,6 +20,8 @@
 #include <string>
 #include <vector>
 
+#include "nodus/parallel/mpi_session.hpp"
+
 namespace {
 
 namespace fs = std::filesystem;
@@ -149,8 +151,10 @@ TEST(Resume, EqualsTheUninterruptedRunWithEachLinearSolver) {
   // A resumed run analyses its tangent again at its first step, where the run never stopped kept its analysis
   // of the same pattern (CHOLMOD and MUMPS, whose analyses read the pattern alone) or analysed again
   // (UMFPACK, which is given the values, and KLU, whose pivots are chosen anew after an analysis): the
-  // results must not show it. cholmod is the case above.
-  for (const char* solver : {"umfpack", "mumps", "klu"}) {
+  // results must not show it. cholmod is the case above; petsc (one process here) where nodus has PETSc.
+  std::vector<const char*> solvers = {"umfpack", "mumps", "klu"};
+  if (nodus::parallel::available()) solvers.push_back("petsc");
+  for (const char* solver : solvers) {
     SCOPED_TRACE(solver);
     const std::string name = std::string("drag_") + solver;
     const fs::path scenario =

@@ -12,6 +12,7 @@
 
 #include <gtest/gtest.h>
 
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/scenario/scenario.hpp"
 
 namespace nodus::scenario {
@@ -593,6 +594,25 @@ TEST(ScenarioErrors, Integers) {
   EXPECT_TRUE(fails_at(kBase + "solver:\n  easy_iterations: 0\n", 35, "solver.easy_iterations"));
   EXPECT_TRUE(fails_at(kBase + "output:\n  vtk_every: -1\n", 35, "output.vtk_every"));
   EXPECT_TRUE(fails_at(kBase + "output:\n  tube_sides: 2\n", 35, "output.tube_sides"));
+}
+
+TEST(ScenarioErrors, PetscSolverAndItsOptions) {
+  // Options are words `-name` or the one value after an option.
+  EXPECT_TRUE(fails_at(kBase + "solver:\n  petsc_options: superlu_dist\n", 35, "solver.petsc_options"));
+  EXPECT_TRUE(fails_at(kBase + "solver:\n  petsc_options: \"-ksp_type gmres preonly\"\n", 35,
+                       "solver.petsc_options"));
+  EXPECT_TRUE(fails_at(kBase + "solver:\n  petsc_options: [a]\n", 35, "solver.petsc_options"));
+  const std::string petsc =
+      kBase + "solver:\n  linear_solver: petsc\n  petsc_options: \"-mat_mumps_cntl_1 -0.5 -ksp_view\"\n";
+  if (nodus::parallel::available()) {
+    const Scenario s = parse_scenario(petsc, "knot.yaml");
+    EXPECT_EQ(s.solver.linear_solver, LinearSolverKind::petsc);
+    EXPECT_EQ(s.solver.petsc_options, "-mat_mumps_cntl_1 -0.5 -ksp_view");
+  } else {
+    // A build without PETSc refuses the solver at its line, saying why.
+    EXPECT_TRUE(fails_at(petsc, 35, "solver.linear_solver"));
+    EXPECT_NE(error_of(petsc).find("petsc needs nodus built with PETSc"), std::string::npos);
+  }
 }
 
 TEST(ScenarioErrors, Choices) {

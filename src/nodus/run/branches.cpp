@@ -18,9 +18,8 @@
 #include <spdlog/spdlog.h>
 
 #include "nodus/output/output_folder.hpp"
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/run/run_outputs.hpp"
-
-extern char** environ;
 
 namespace nodus::run {
 namespace {
@@ -96,16 +95,20 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
   if (!start.own && (state.progress.stage != branch.from + 1 || state.progress.stage_begun))
     throw std::runtime_error(
         fmt::format("'{}' does not hold the state at the end of stage '{}'", from.string(), outcome.from));
+  parallel::barrier();  // every rank has read its start before rank 0 writes the branch's files
   spdlog::info("branch '{}': {} {}", branch.name, start.own ? "resuming from" : "starting from",
                from.string());
   branch_sim.restore(std::move(state),
                      start.own ? simulation::StartKind::resumed : simulation::StartKind::branched);
-  RunOutputs branch_outputs(branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
-                            "branch " + branch.name + ": ");
+  std::optional<RunOutputs> branch_outputs;  // rank 0 alone writes, under MPI
+  if (parallel::is_root())
+    branch_outputs.emplace(branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
+                           "branch " + branch.name + ": ");
   simulation::RunOptions options;
   options.stop_after_steps = steps_left;
   options.cancel = request.cancel;
-  const simulation::RunSummary summary = branch_sim.run(branch_outputs.observers(), options);
+  const simulation::RunSummary summary =
+      branch_sim.run(branch_outputs ? branch_outputs->observers() : no_observers(), options);
   run.new_steps = summary.new_steps;
   if (summary.interrupted) {
     run.interrupted = true;
@@ -139,15 +142,16 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   }
   const auto b = static_cast<std::size_t>(found - branches.begin());
   const fs::path dir = branch_dir(request.out, *found);
-  output::remove_stale_temporary_files(dir);  // left by a killed run
+  if (parallel::is_root()) output::remove_stale_temporary_files(dir);  // left by a killed run
   BranchStart start;
   if (request.resume) {
     start.finished = fs::exists(dir / "summary.json");
     if (!start.finished) start.own = persistence::newest_checkpoint(dir / "checkpoints");
-  } else {
+  } else if (parallel::is_root()) {
     fs::remove(dir / "summary.json");
     persistence::remove_checkpoints(dir / "checkpoints");
   }
+  parallel::barrier();  // every rank has looked before rank 0 writes
   const BranchRun run = run_branch(request, main_scenario, b, start, request.stop_after_steps);
   Outcome outcome;
   outcome.interrupted = run.interrupted;
@@ -203,9 +207,14 @@ bool run_branch_processes(const Request& request, const scenario::Scenario& main
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
+      // A process of its own, not a rank of this one's MPI job (this one may have started MPI as a singleton).
+      std::vector<std::string> environment = parallel::environment_for_another_program();
+      std::vector<char*> envp;
+      for (std::string& e : environment) envp.push_back(e.data());
+      envp.push_back(nullptr);
       pid_t pid = 0;
       const int error =
-          posix_spawn(&pid, request.branch_executable.c_str(), nullptr, nullptr, argv.data(), environ);
+          posix_spawn(&pid, request.branch_executable.c_str(), nullptr, nullptr, argv.data(), envp.data());
       if (error != 0)
         throw std::runtime_error(fmt::format("could not start the process of branch '{}': {}",
                                              main_scenario.branches[b].name, std::strerror(error)));

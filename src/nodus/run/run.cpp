@@ -11,6 +11,7 @@
 
 #include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/branches.hpp"
 #include "nodus/run/run_outputs.hpp"
@@ -80,12 +81,17 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
     }
   }
 
-  // From here on, files are written.
-  fs::create_directories(out);
-  output::remove_stale_temporary_files(out);  // left by a killed run
+  // From here on, files are written: by rank 0 alone under MPI (the other ranks compute the same states),
+  // once every rank has read what it reads.
+  parallel::barrier();
+  const bool writes = parallel::is_root();
+  if (writes) {
+    fs::create_directories(out);
+    output::remove_stale_temporary_files(out);  // left by a killed run
+  }
   if (resumed) {
     sim.restore(std::move(*resumed), simulation::StartKind::resumed);
-  } else {
+  } else if (writes) {
     // Branch results of an earlier run must not pass for finished or resumable ones.
     for (const scenario::BranchSpec& branch : main_scenario.branches) {
       fs::remove(branch_dir(out, branch) / "summary.json");
@@ -94,11 +100,13 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   }
   int steps_left = request.stop_after_steps;
 
-  RunOutputs outputs(out, main_scenario, request.quiet, main_scenario.branches.empty());
+  std::optional<RunOutputs> outputs;
+  if (writes) outputs.emplace(out, main_scenario, request.quiet, main_scenario.branches.empty());
   simulation::RunOptions options;
   options.stop_after_steps = steps_left;
   options.cancel = request.cancel;
-  const simulation::RunSummary summary = sim.run(outputs.observers(), options);
+  const simulation::RunSummary summary = sim.run(outputs ? outputs->observers() : no_observers(), options);
+  parallel::barrier();  // rank 0's checkpoints, which the branches start from, are written
   Outcome outcome;
   if (summary.interrupted) {
     log_stopped_as_asked(request, sim, summary.cancelled);
@@ -156,8 +164,9 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
     outcome.converged = outcome.converged && r.outcome.converged;
     outcomes.push_back(std::move(r.outcome));
   }
+  if (!writes) return outcome;
   // The main run's summary, written last: it lists the branches and marks the whole run as finished.
-  output::SummaryData data = *outputs.summary().data();
+  output::SummaryData data = *outputs->summary().data();
   data.branches = std::move(outcomes);
   output::write_summary(out / "summary.json", data);
   return outcome;

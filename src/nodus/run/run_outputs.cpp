@@ -19,4 +19,9 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenari
   if (!quiet) observers_.push_back(&progress_);
 }
 
+const std::vector<simulation::StepObserver*>& no_observers() {
+  static const std::vector<simulation::StepObserver*> none;
+  return none;
+}
+
 }  // namespace nodus::run

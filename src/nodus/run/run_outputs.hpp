@@ -44,4 +44,7 @@ class RunOutputs {
   std::vector<simulation::StepObserver*> observers_;
 };
 
+/// The observers of a process that writes nothing (an MPI rank other than 0).
+const std::vector<simulation::StepObserver*>& no_observers();
+
 }  // namespace nodus::run

@@ -277,7 +277,12 @@ std::string describe(const Scenario& scenario) {
   describe_stages(out, scenario, scenario.stages, "");
 
   line("solver:");
-  describe_keys(out, SolverSettings::keys(), scenario.solver, "  ");
+  describe_keys(out, SolverSettings::keys(), scenario.solver, "  ", [&](const Key<SolverSettings>& key) {
+    if (key.path != "solver.petsc_options") return false;
+    if (!scenario.solver.petsc_options.empty())
+      line(fmt::format("  petsc_options: {}", yaml_name(scenario.solver.petsc_options)));
+    return true;
+  });
   line("output:");
   describe_keys(out, OutputSettings::keys(), scenario.output, "  ");
   line("contact:");

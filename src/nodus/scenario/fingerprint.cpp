@@ -145,6 +145,7 @@ std::string canonical_text(const Scenario& s) {
   }
   out.stages(s.stages);
   out.keys(s.solver, "solver", "solver");
+  out.line("solver.petsc_options", s.solver.petsc_options);
   out.keys(s.contact, "contact", "contact");
   out.line("contact.beams", list(s.contact.beams));
   return std::move(out).text();

@@ -4,6 +4,7 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/scenario/keys.hpp"
 #include "nodus/scenario/section_readers.hpp"
 #include "nodus/scenario/yaml_input.hpp"
@@ -55,6 +56,8 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_stages(reader, top.require("stages"), condition_names, scenario.conditions, beam_names,
                   scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
+  if (scenario.solver.linear_solver == LinearSolverKind::petsc && !parallel::available())
+    reader.fail(*MapView(reader, *top.get("solver")).get("linear_solver"), kPetscBuildExpected);
   if (scenario.contact.friction_tangent == FrictionTangent::varying &&
       scenario.solver.linear_solver == LinearSolverKind::cholmod) {
     reader.fail(*MapView(reader, *top.get("contact")).get("friction_tangent"), kFrictionTangentExpected);

@@ -460,7 +460,7 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
   return keys;
 }
 
-enum class LinearSolverKind { cholmod, umfpack, mumps, klu };
+enum class LinearSolverKind { cholmod, umfpack, mumps, klu, petsc };
 
 /// The `solver` section. The Newton and stepping defaults are the library's (solver::NewtonSettings,
 /// solver::StepControl); the others equal those of the library structs that take them, which a test checks
@@ -484,6 +484,9 @@ struct SolverSettings {
   int gauss_points = 2;         ///< Gauss points per element along the axis, 1..5
   double fold_stiffness = 0.0;  ///< beta of the fold stabilisation (beam_element.hpp), >= 0
   double fold_barrier = 1.0;    ///< gamma of the orientation barrier (beam_element.hpp), >= 0
+  /// PETSc options for linear_solver: petsc, as on a command line ("-pc_factor_mat_solver_type
+  /// superlu_dist"); the command line's own options win (docs/parallel.md).
+  std::string petsc_options;
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<SolverSettings>> keys();
@@ -493,11 +496,13 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
   using K = Key<SolverSettings>;
   static const K keys[] = {
       K::choice(
-          "solver.linear_solver", "cholmod | umfpack | mumps | klu",
+          "solver.linear_solver", "cholmod | umfpack | mumps | klu | petsc",
           [](const SolverSettings& c) { return static_cast<int>(c.linear_solver); },
           [](SolverSettings& c, int i) { c.linear_solver = static_cast<LinearSolverKind>(i); },
           "sparse direct solver: cholmod (Cholesky), umfpack (LU), mumps (multifrontal LDL^T, or LU where "
-          "the tangent is not symmetric) or klu (sparse LU, keeping its pivots while they serve)"),
+          "the tangent is not symmetric), klu (sparse LU, keeping its pivots while they serve) or petsc (the "
+          "MPI ranks of `mpirun -n N nodus run` together: PETSc's KSP with MUMPS's LDL^T or LU; "
+          "docs/parallel.md)"),
       K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
                ranges::at_least_one, "iterations per step attempt"),
       K::real("solver.residual_tolerance", &SolverSettings::residual_tolerance, "", "> 0", ranges::positive,
@@ -535,6 +540,9 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
               "gamma of the energy against an axis that turns against its section (det[g1, g2, r'] < 1/2), "
               "which keeps every element from folding; zero in any state of small strain; 0: none "
               "(docs/model.md)"),
+      K::doc("solver.petsc_options", KeyType::string, "", "\"\"", "PETSc options (-name [value] ...)",
+             "options of the petsc linear solver (-pc_factor_mat_solver_type superlu_dist, "
+             "-mat_mumps_icntl_14 50, ...); the command line's win (docs/parallel.md)"),
   };
   return keys;
 }

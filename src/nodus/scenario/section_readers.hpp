@@ -45,6 +45,8 @@ constexpr std::string_view kReleaseOnSeveralBodiesExpected =
     "its own condition)";
 // CHOLMOD reads one triangle of the tangent: the varying friction tangent, not symmetric, needs LU. Asked
 // for explicitly rather than switched on behind the user's back, so that the file says which solver runs.
+constexpr std::string_view kPetscBuildExpected =
+    "cholmod, umfpack, mumps or klu (petsc needs nodus built with PETSc: install petsc-dev and rebuild)";
 constexpr std::string_view kFrictionTangentExpected =
     "frozen with solver.linear_solver: cholmod (the varying tangent is not symmetric and needs LU: "
     "set solver.linear_solver: umfpack, mumps or klu)";

@@ -1,5 +1,6 @@
 #include "nodus/scenario/section_readers.hpp"
 
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/scenario/declared_keys.hpp"
 
 #include <fmt/format.h>
@@ -19,6 +20,10 @@ SolverSettings read_solver(const Reader& reader, const MapView& top) {
   if (!field) return solver;
   const MapView map(reader, *field);
   read_keys(reader, map, SolverSettings::keys(), solver);
+  if (const auto options = map.get("petsc_options")) {
+    solver.petsc_options = reader.name(*options);
+    if (!parallel::well_formed_options(solver.petsc_options)) reader.fail(*options);
+  }
   return solver;
 }
 

@@ -14,6 +14,7 @@
 #include "nodus/solver/linear_solver.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/newton.hpp"
+#include "nodus/solver/petsc_solver.hpp"
 
 namespace nodus::simulation {
 namespace {
@@ -213,6 +214,8 @@ solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, boo
       return symmetric ? solver::LinearSolverKind::mumps_ldlt : solver::LinearSolverKind::mumps_lu;
     case scenario::LinearSolverKind::klu:
       return solver::LinearSolverKind::klu;
+    case scenario::LinearSolverKind::petsc:
+      break;  // made by make_petsc_solver
   }
   return solver::LinearSolverKind::cholmod;
 }
@@ -330,8 +333,11 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   RunSummary summary;
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
-  auto linear = solver::make_linear_solver(linear_solver_kind(
-      scenario_.solver.linear_solver, !laws_.friction_normal_coupling && !laws_.linearized_normals));
+  const bool symmetric = !laws_.friction_normal_coupling && !laws_.linearized_normals;
+  auto linear =
+      scenario_.solver.linear_solver == scenario::LinearSolverKind::petsc
+          ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options)
+          : solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver, symmetric));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;

@@ -13,6 +13,12 @@
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 
+#include "nodus/parallel/mpi_session.hpp"
+
+#ifdef NODUS_HAVE_PETSC
+#include <mpi.h>
+#endif
+
 namespace nodus::solver {
 namespace {
 
@@ -26,13 +32,20 @@ void use_metis(Solver& solver) {
   c.print = 0;  // a matrix that is not positive definite is expected; it is reported through info()
 }
 
-/// MUMPS (the sequential library: one process, OpenMP threads and the system BLAS), multifrontal: LDL^T with
-/// 2x2 pivots for a symmetric matrix, definite or not, or LU for any matrix, ordered by PORD. The analysis is
-/// kept until the pattern changes, and the values are copied from the matrix at each factorisation.
+/// MUMPS in this process alone (OpenMP threads and the system BLAS), multifrontal: LDL^T with 2x2 pivots for
+/// a symmetric matrix, definite or not, or LU for any matrix, ordered by PORD. The analysis is kept until the
+/// pattern changes, and the values are copied from the matrix at each factorisation. Without PETSc it is the
+/// sequential library; with PETSc, the MPI library on MPI_COMM_SELF (cmake/FindMUMPS.cmake), which starts
+/// MPI if it has not started.
 class MumpsSolver final : public LinearSolver {
  public:
   explicit MumpsSolver(bool symmetric) : symmetric_(symmetric) {
+#ifdef NODUS_HAVE_PETSC
+    parallel::ensure_initialized();
+    id_.comm_fortran = static_cast<MUMPS_INT>(MPI_Comm_c2f(MPI_COMM_SELF));
+#else
     id_.comm_fortran = kUseCommWorld;
+#endif
     id_.par = 1;                  // this process factorises (there is no other)
     id_.sym = symmetric ? 2 : 0;  // 2: general symmetric (LDL^T with pivoting), 0: unsymmetric
     call(-1, "initialisation");
@@ -48,8 +61,16 @@ class MumpsSolver final : public LinearSolver {
     // The usual symmetric ordering, not the compressed one MUMPS picks by default for LDL^T: that one's
     // analysis took 15 s at 75 fibres (against 1.1 s) for a slower factorisation.
     icntl(12) = 1;
+#ifdef NODUS_HAVE_PETSC
+    // The MPI library factorises the root front with ScaLAPACK by default, which the sequential one cannot:
+    // on one process, the sequential library's own kernels, and so its results.
+    icntl(13) = 1;
+#endif
   }
   ~MumpsSolver() override {
+#ifdef NODUS_HAVE_PETSC
+    if (!parallel::active()) return;  // MPI stopped at exit: MUMPS can no longer free its memory
+#endif
     id_.job = -2;  // frees MUMPS's memory
     dmumps_c(&id_);
   }
@@ -106,14 +127,24 @@ class MumpsSolver final : public LinearSolver {
     return x;
   }
 
-  std::string name() const override { return symmetric_ ? "mumps_ldlt" : "mumps_lu"; }
-  bool analysis_reads_values() const override { return false; }  // it is handed zeros (analyze)
+  std::string name() const override {
+    return symmetric_ ? "mumps_ldlt" : "mumps_lu";
+  }
+  bool analysis_reads_values() const override {
+    return false;
+  }  // it is handed zeros (analyze)
 
  private:
+#ifndef NODUS_HAVE_PETSC
   static constexpr MUMPS_INT kUseCommWorld = -987654;  // the sequential library's only communicator
+#endif
 
-  MUMPS_INT& icntl(int i) { return id_.icntl[i - 1]; }  // 1-based, as in MUMPS's guide
-  int infog(int i) const { return id_.infog[i - 1]; }
+  MUMPS_INT& icntl(int i) {
+    return id_.icntl[i - 1];
+  }  // 1-based, as in MUMPS's guide
+  int infog(int i) const {
+    return id_.infog[i - 1];
+  }
 
   void call(int job, const char* what) {
     id_.job = job;

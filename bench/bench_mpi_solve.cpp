@@ -1,0 +1,87 @@
+// One Newton iteration's linear solve of the twisted bundle on MPI ranks (issue 20): the tangent of
+// bundle_problem.hpp factorised and solved by the petsc solver (MUMPS through PETSc, the rows split among the
+// ranks), or by nodus's serial mumps for comparison. Not Google Benchmark: every rank must run the same
+// iterations (they factorise together), so the repetitions are fixed. A timed run, not a test.
+//
+//   mpirun -n N bench_mpi_solve FIBRES [REPEATS] [--serial] [PETSc options: -mat_mumps_icntl_28 2 ...]
+//
+// Prints, on rank 0: the unknowns, the assembly time, the first factorisation (analysis included), the median
+// and the spread of REPEATS factorise-and-solve, and |K du - r| / |r|. Results: docs/parallel.md.
+
+#include <algorithm>
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+#include "bundle_problem.hpp"
+#include "nodus/parallel/mpi_session.hpp"
+#include "nodus/solver/linear_solver.hpp"
+#include "nodus/solver/petsc_solver.hpp"
+
+namespace {
+
+double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const nodus::parallel::SplitArguments split = nodus::parallel::split_petsc_options(argc, argv);
+  nodus::parallel::initialize(split.petsc);
+  const std::vector<std::string>& args = split.rest;
+  if (args.size() < 2) {
+    if (nodus::parallel::is_root())
+      std::fprintf(stderr, "usage: bench_mpi_solve FIBRES [REPEATS] [--serial] [PETSc options]\n");
+    nodus::parallel::finalize();
+    return 2;
+  }
+  const int fibres = std::atoi(args[1].c_str());
+  const int repeats = args.size() > 2 && args[2] != "--serial" ? std::atoi(args[2].c_str()) : 5;
+  const bool serial = std::find(args.begin(), args.end(), "--serial") != args.end();
+  const bool root = nodus::parallel::is_root();
+
+  if (!serial && !nodus::parallel::available()) {
+    std::fprintf(stderr, "bench_mpi_solve: this build has no PETSc (run with --serial)\n");
+    return 2;
+  }
+  nodus::bench::Setup s(fibres);
+  Eigen::VectorXd r;
+  nodus::parallel::barrier();
+  auto start = std::chrono::steady_clock::now();
+  s.problem->evaluate(r, true);
+  const double assembly = seconds_since(start);
+  {
+    auto linear = serial ? nodus::solver::make_linear_solver(nodus::solver::LinearSolverKind::mumps_ldlt)
+                         : nodus::solver::make_petsc_solver(true, "");
+    nodus::parallel::barrier();
+    start = std::chrono::steady_clock::now();
+    linear->analyze(s.problem->tangent());
+    bool ok = linear->factorize(s.problem->tangent());
+    Eigen::VectorXd du = linear->solve(r);
+    nodus::parallel::barrier();
+    const double first = seconds_since(start);
+    std::vector<double> times;
+    for (int i = 0; i < repeats; ++i) {
+      nodus::parallel::barrier();
+      start = std::chrono::steady_clock::now();
+      ok = linear->factorize(s.problem->tangent()) && ok;
+      du = linear->solve(r);
+      nodus::parallel::barrier();
+      times.push_back(seconds_since(start));
+    }
+    std::sort(times.begin(), times.end());
+    const double residual = (s.problem->tangent() * du - r).norm() / r.norm();
+    if (root)
+      std::printf(
+          "fibres %d, unknowns %ld, contact elements %zu, ranks %d, %s: assembly %.3f s, first factorisation "
+          "%.3f s, factorise+solve median %.3f s (min %.3f, max %.3f, %d repeats), |K du - r|/|r| %.1e%s\n",
+          fibres, static_cast<long>(s.problem->size()), s.geometry.elements.size(), nodus::parallel::size(),
+          serial ? "serial mumps LDL^T" : "petsc (MUMPS LDL^T)", assembly, first, times[times.size() / 2],
+          times.front(), times.back(), repeats, residual, ok ? "" : " (a factorisation failed)");
+  }
+  nodus::parallel::finalize();
+  return 0;
+}
