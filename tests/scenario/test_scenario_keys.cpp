@@ -82,7 +82,8 @@ TEST(ScenarioKeys, ExpectedTexts) {
   EXPECT_EQ(expected_text(scenario_key("beams[].radius")), "a number > 0 (mm)");
   EXPECT_EQ(expected_text(scenario_key("materials[].poisson_ratio")), "a number in [0, 0.5)");
   EXPECT_EQ(expected_text(scenario_key("beams[].elements")), "an integer >= 1");
-  EXPECT_EQ(expected_text(scenario_key("solver.linear_solver")), "one of cholmod | umfpack | mumps | klu | petsc");
+  EXPECT_EQ(expected_text(scenario_key("solver.linear_solver")),
+            "one of cholmod | umfpack | mumps | klu | petsc");
   EXPECT_EQ(expected_text(scenario_key("units.length")), "exactly mm");
   EXPECT_EQ(expected_text(scenario_key("solver.line_search")), "true or false");
   EXPECT_EQ(expected_text(scenario_key("beams[].start")), "a list of 3 numbers (mm)");

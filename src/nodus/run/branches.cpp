@@ -207,7 +207,8 @@ bool run_branch_processes(const Request& request, const scenario::Scenario& main
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);
-      // A process of its own, not a rank of this one's MPI job (this one may have started MPI as a singleton).
+      // A process of its own, not a rank of this one's MPI job (this one may have started MPI as a
+      // singleton).
       std::vector<std::string> environment = parallel::environment_for_another_program();
       std::vector<char*> envp;
       for (std::string& e : environment) envp.push_back(e.data());
