@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Quick start, second command: installs what is missing, builds and runs the tests twice: Release, then Debug
-# at -O1 with AddressSanitizer on everything and UndefinedBehaviorSanitizer on nodus's library and program (without the tests labelled `long`, the knot
-# runs, which would take tens of minutes under the sanitizers; their code paths are covered by the shorter
-# tests; and without PETSc: OpenMPI's own allocations would read as leaks, and the MPI runs are checked in the
-# Release pass). Tests labelled `slow` (the Python friction-sweep example and the 3x1 knot, minutes) are left out of both:
+# at -O1 with AddressSanitizer on everything and UndefinedBehaviorSanitizer on nodus's library and program
+# (without the tests labelled `long`, the knot runs, which would take tens of minutes under the sanitizers;
+# their code paths are covered by the shorter tests; and without PETSc: OpenMPI's own allocations would read
+# as leaks, and the MPI runs are checked in the Release pass). Tests labelled `slow` (the Python
+# friction-sweep example and the 3x1 knot, minutes) are left out of both:
 # `ctest --test-dir build/release -L slow` runs them.
 set -euo pipefail
 cd "$(dirname "$0")/.."
