@@ -5,10 +5,12 @@
 
 For each scenario: the serial run as the scenario says (its own linear solver), then the same scenario with
 solver.linear_solver: petsc on 1, 2 and 3 ranks; each must give the same steps, the same contact counts and
-final nodes within 1e-8 mm (compare_runs.py). Then, on 2 ranks: bad input is reported once with exit status
+final nodes within 1e-8 mm (compare_runs.py). Then, on 2 ranks: the same for tool_drag with the lagged
+factorisation (solver.reuse_factor) against that policy in one process; bad input is reported once with exit status
 2 on every rank and nothing written; a run stopped after 7 steps and resumed ends with the files of the run
 never stopped, byte for byte. Needs the nodus Python module (PYTHONPATH) to rewrite the scenarios.
 """
+import json
 import os
 import subprocess
 import sys
@@ -32,11 +34,15 @@ def mpirun(launcher, n, args):
     return subprocess.run(command, capture_output=True, text=True, env=env)
 
 
-def with_petsc(source, target):
+def with_solver(source, target, **solver):
     scenario = nodus.Scenario.from_yaml(source)
     data = scenario.to_dict()
-    data.setdefault("solver", {})["linear_solver"] = "petsc"
+    data.setdefault("solver", {}).update(solver)
     nodus.Scenario(data).to_yaml(target)
+
+
+def with_petsc(source, target):
+    with_solver(source, target, linear_solver="petsc")
 
 
 def main():
@@ -65,6 +71,31 @@ def main():
             print(f"{name}, {n} ranks: " + c.stdout.strip().replace("\n", "; "))
             if c.returncode != 0:
                 failures.append(f"{name} on {n} ranks differs from the serial run: {c.stdout}")
+
+    # The lagged factorisation (solver.reuse_factor: GMRES preconditioned by a kept factor, refactorised when
+    # it no longer serves) through PETSc on 2 ranks against the same policy in one process.
+    lagged_serial, lagged_petsc = work / "tool_drag_lagged.yaml", work / "tool_drag_lagged_petsc.yaml"
+    with_solver(examples / "tool_drag.yaml", lagged_serial, reuse_factor=True)
+    with_solver(examples / "tool_drag.yaml", lagged_petsc, reuse_factor=True, linear_solver="petsc")
+    serial, out = work / "tool_drag_lagged_serial", work / "tool_drag_lagged_petsc_2"
+    r = subprocess.run([exe, "run", str(lagged_serial), "--out", str(serial), "--quiet"], capture_output=True,
+                       text=True)
+    r2 = mpirun(launcher, 2, [exe, "run", str(lagged_petsc), "--out", str(out), "--quiet"])
+    if r.returncode != 0 or r2.returncode != 0:
+        failures.append(f"lagged factorisation: exit status {r.returncode} serial, {r2.returncode} on 2 ranks: "
+                        f"{r.stderr[-400:]} {r2.stderr[-400:]}")
+    else:
+        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(serial), str(out)],
+                           capture_output=True, text=True)
+        counts = [json.loads((d / "summary.json").read_text()) for d in (serial, out)]
+        counts = [(s["newton_iterations"], s["factorizations"], s["krylov_iterations"]) for s in counts]
+        print("tool_drag with reuse_factor, 2 ranks: " + c.stdout.strip().replace("\n", "; ") +
+              "; (Newton iterations, factorisations, GMRES iterations): serial {}, 2 ranks {}".format(*counts))
+        if c.returncode != 0:
+            failures.append(f"tool_drag with reuse_factor on 2 ranks differs from the serial run: {c.stdout}")
+        # The policy itself: fewer factorisations than iterations, and the same ones as in one process.
+        if counts[0] != counts[1] or counts[1][1] >= counts[1][0] or counts[1][2] == 0:
+            failures.append(f"tool_drag with reuse_factor: counts {counts[0]} serial, {counts[1]} on 2 ranks")
 
     # Bad input: one message, status 2 on every rank (mpirun returns a rank's non-zero status), no folder.
     bad = work / "bad.yaml"
