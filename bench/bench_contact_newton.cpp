@@ -3,6 +3,7 @@
 // clamped in the twisted state), split as the global algorithm spends it [Durville 2012, Sect. 6]:
 //   BM_ContactDetection       detect(): proximity zones, intermediate geometries, contact elements (once per
 //                             loop-2 iteration, i.e. once per few Newton iterations)
+//   BM_BundleDetection        detect() alone on 75, 300 and 1,000 fibres, without the equilibrium problem
 //   BM_ContactAssembly        EquilibriumProblem::evaluate(r, true): beams and contact elements, residual and
 //                             tangent
 //   BM_ContactFactorizeSolve  factorisation and solve by each sparse direct solver (analysis once, outside
@@ -46,6 +47,21 @@ void BM_ContactDetection(benchmark::State& state) {
     benchmark::DoNotOptimize(g.elements.data());
   }
   set_counters(state, s);
+}
+
+/// Detection alone on bundles too large for the whole problem (1,000 fibres: 909,000 unknowns): the cost of
+/// the replicated detection of a distributed run (docs/parallel.md), where every rank detects on its own
+/// threads. The bundle's state, no equilibrium problem; the first detection gives the previous geometry.
+void BM_BundleDetection(benchmark::State& state) {
+  const nodus::bench::Bundle bundle = nodus::bench::twisted_bundle(static_cast<int>(state.range(0)));
+  const nodus::contact::ContactGeometry first = nodus::contact::detect(bundle.model, bundle.x, {});
+  for (auto _ : state) {
+    nodus::contact::ContactGeometry g = nodus::contact::detect(bundle.model, bundle.x, {}, {}, &first);
+    benchmark::DoNotOptimize(g.elements.data());
+  }
+  state.counters["zones"] = static_cast<double>(first.zones.size());
+  state.counters["contact_elements"] = static_cast<double>(first.elements.size());
+  state.counters["dofs"] = static_cast<double>(bundle.model.num_dofs());
 }
 
 void BM_ContactAssembly(benchmark::State& state) {
@@ -139,6 +155,7 @@ void sizes_and_solvers(benchmark::internal::Benchmark* b) {
 }  // namespace
 
 BENCHMARK(BM_ContactDetection)->Apply(sizes);
+BENCHMARK(BM_BundleDetection)->Arg(75)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ContactAssembly)->Apply(sizes);
 BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes_and_solvers);
 BENCHMARK(BM_ContactInstall)
