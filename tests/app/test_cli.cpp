@@ -111,3 +111,35 @@ TEST(Cli, OpenMpThreadsWaitPassivelyUnlessTheUserChose) {
   EXPECT_EQ(libgomp_policy(""), "OMP_WAIT_POLICY = 'PASSIVE'");
   EXPECT_EQ(libgomp_policy("OMP_WAIT_POLICY=ACTIVE"), "OMP_WAIT_POLICY = 'ACTIVE'");
 }
+
+// Where OpenBLAS took its generic "Prescott" kernels on a processor that has AVX2 (or AVX-512), a run says
+// which OPENBLAS_CORETYPE would serve it better; with kernels that match the processor it says nothing.
+// OPENBLAS_CORETYPE forces OpenBLAS's choice, OPENBLAS_VERBOSE=2 makes it print it ("Core: NAME").
+TEST(Cli, SaysWhenOpenBlasTookItsGenericKernels) {
+  const fs::path scenario = write("blas_kernels.yaml", nodus::testing::kDrag);
+  const auto run_with = [&](const std::string& core) {
+    const fs::path err = scratch() / "blas_kernels.txt";
+    const std::string cmd = "env OPENBLAS_VERBOSE=2 OPENBLAS_CORETYPE=" + core + " " + NODUS_BINARY +
+                            " run " + scenario.string() + " --out " + (scratch() / "blas_kernels").string() +
+                            " --quiet --stop-after-steps 1 2> " + err.string() + " > /dev/null";
+    EXPECT_NE(std::system(cmd.c_str()), -1);
+    return nodus::testing::read_file(err);
+  };
+  const std::string generic = run_with("Prescott");
+  if (generic.find("Core: Prescott") == std::string::npos)
+    GTEST_SKIP() << "the BLAS is not OpenBLAS (or prints nothing)";
+  __builtin_cpu_init();
+  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
+  const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+                      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+                      __builtin_cpu_supports("avx512vl");
+  if (!avx2 && !avx512) {
+    EXPECT_EQ(generic.find("OPENBLAS_CORETYPE="), std::string::npos) << generic;
+    return;
+  }
+  const std::string advice = std::string("OPENBLAS_CORETYPE=") + (avx512 ? "SkylakeX" : "Haswell");
+  EXPECT_NE(generic.find(advice), std::string::npos) << generic;
+  const std::string matched = run_with("Haswell");
+  EXPECT_NE(matched.find("Core: Haswell"), std::string::npos) << matched;
+  EXPECT_EQ(matched.find("OPENBLAS_CORETYPE="), std::string::npos) << matched;
+}

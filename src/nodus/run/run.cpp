@@ -16,6 +16,7 @@
 #include "nodus/run/branches.hpp"
 #include "nodus/run/run_outputs.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "nodus/solver/blas_kernels.hpp"
 
 namespace nodus::run {
 namespace {
@@ -41,6 +42,15 @@ namespace {
 Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, scenario::describe(scenario));
+  if (request.branch.empty()) {
+    const solver::BlasKernels blas = solver::blas_kernels();
+    if (!blas.better.empty())
+      spdlog::warn(
+          "OpenBLAS took its generic kernels ({}) on this processor, which can run its {} kernels: "
+          "factorisations may take twice as long; start nodus with OPENBLAS_CORETYPE={} for them "
+          "(docs/performance.md)",
+          blas.loaded, blas.better, blas.better);
+  }
   // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
   // in the stages or in a branch); it happens before anything is written.
   simulation::Simulation sim(std::move(scenario));
