@@ -42,15 +42,6 @@ namespace {
 Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   if (!request.quiet && request.branch.empty())
     spdlog::info("scenario {} resolved as:\n{}", request.scenario_path, scenario::describe(scenario));
-  if (request.branch.empty()) {
-    const solver::BlasKernels blas = solver::blas_kernels();
-    if (!blas.better.empty())
-      spdlog::warn(
-          "OpenBLAS took its generic kernels ({}) on this processor, which can run its {} kernels: "
-          "factorisations may take twice as long; start nodus with OPENBLAS_CORETYPE={} for them "
-          "(docs/performance.md)",
-          blas.loaded, blas.better, blas.better);
-  }
   // Building the model validates what the reader cannot (e.g. a condition that would over-constrain a node,
   // in the stages or in a branch); it happens before anything is written.
   simulation::Simulation sim(std::move(scenario));
@@ -115,6 +106,14 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   simulation::RunOptions options;
   options.stop_after_steps = steps_left;
   options.cancel = request.cancel;
+  // Said once the input has passed every check (bad input gets its one line alone).
+  const solver::BlasKernels blas = solver::blas_kernels();
+  if (!blas.better.empty())
+    spdlog::warn(
+        "OpenBLAS took its generic kernels ({}) on this processor, which can run its {} kernels: "
+        "factorisations may take twice as long; start nodus with OPENBLAS_CORETYPE={} for them "
+        "(docs/performance.md)",
+        blas.loaded, blas.better, blas.better);
   const simulation::RunSummary summary = sim.run(outputs ? outputs->observers() : no_observers(), options);
   parallel::barrier();  // rank 0's checkpoints, which the branches start from, are written
   Outcome outcome;
