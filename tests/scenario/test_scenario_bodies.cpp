@@ -338,7 +338,11 @@ TEST(ScenarioBodies, ValidateRefusesBadBodyDataBuiltInCode) {
             }),
             "in code: conditions[1].bodies: expected one body for a load condition, got 2");
   EXPECT_EQ(error([](Scenario& s) { s.conditions[0].pivot = Vec3::Zero(); }),
-            "in code: conditions[0].pivot: expected no pivot on a clamp or load condition, got [0, 0, 0]");
+            "in code: conditions[0].pivot: expected no pivot on a clamp condition on bodies (pivot is for "
+            "motion conditions), got [0, 0, 0]");
+  EXPECT_EQ(error([](Scenario& s) { s.conditions[2].pivot = Vec3::Zero(); }),
+            "in code: conditions[2].pivot: expected no pivot on a bind condition on bodies (pivot is for "
+            "motion conditions), got [0, 0, 0]");
   EXPECT_EQ(
       error([](Scenario& s) { s.conditions[0].body_dofs = {}; }),
       "in code: conditions[0].dofs: expected a list of at least one of all | position | directors | x | "

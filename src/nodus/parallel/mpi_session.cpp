@@ -10,6 +10,8 @@
 #ifdef NODUS_HAVE_PETSC
 #include <mpi.h>
 #include <petscsys.h>
+
+#include "nodus/parallel/petsc_check.hpp"
 #endif
 
 extern char** environ;
@@ -33,9 +35,7 @@ bool is_value(std::string_view arg) {
 #ifdef NODUS_HAVE_PETSC
 bool started_here = false;  // PetscInitialize was called by this module
 
-void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error code {})", what, code));
-}
+constexpr auto check = check_petsc;
 #endif
 
 std::vector<std::string> given_options;  // the command line's, from initialize()

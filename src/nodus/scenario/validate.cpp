@@ -275,7 +275,10 @@ void check_conditions(const Checker& check, const Scenario& s, AxisCheck& axes) 
           (condition.body_dofs[kBodyRx] || condition.body_dofs[kBodyRy] || condition.body_dofs[kBodyRz]))
         check.fail(at + ".dofs", kBindDofsExpected, "a rotation");
       if (condition.pivot && condition.type != ConditionType::motion)
-        check.fail(at + ".pivot", "no pivot on a clamp or load condition", format_vec(*condition.pivot));
+        check.fail(at + ".pivot",
+                   fmt::format("no pivot on a {} condition on bodies (pivot is for motion conditions)",
+                               type_name(condition.type)),
+                   format_vec(*condition.pivot));
       if (condition.pivot && !condition.pivot->allFinite())
         check.fail_key(at + ".pivot", "conditions[].pivot", "a non-finite value");
       if (condition.type != ConditionType::load) {

@@ -10,6 +10,8 @@
 
 #ifdef NODUS_HAVE_PETSC
 #include <petscksp.h>
+
+#include "nodus/parallel/petsc_check.hpp"
 #endif
 
 namespace nodus::solver {
@@ -17,9 +19,7 @@ namespace nodus::solver {
 #ifdef NODUS_HAVE_PETSC
 namespace {
 
-void check(PetscErrorCode code, const char* what) {
-  if (code != 0) throw std::runtime_error(fmt::format("PETSc: {} failed (error code {})", what, code));
-}
+constexpr auto check = parallel::check_petsc;
 
 /// Makes a solver's own options database PETSc's default while it lives (PetscOptionsPush): MUMPS reads its
 /// `-mat_mumps_*` options when it factorises, not only when the solver is set up.
@@ -42,31 +42,27 @@ class PetscSolver final : public LinearSolver {
     // where two set the same option. MUMPS's usual symmetric ordering, not the compressed one it picks for
     // LDL^T by default (as the serial mumps solver): 2.63 s against 3.57 s a factorisation of the 27-fibre
     // bundle on 2 ranks (docs/parallel.md).
-    check(PetscOptionsCreate(&options_), "PetscOptionsCreate");
-    check(PetscOptionsInsertString(options_, "-mat_mumps_icntl_12 1"), "PetscOptionsInsertString");
-    check(PetscOptionsInsertString(options_, options.c_str()), "PetscOptionsInsertString");
-    std::string command_line;
-    for (const std::string& word : parallel::command_line_options()) command_line += word + " ";
-    check(PetscOptionsInsertString(options_, command_line.c_str()), "PetscOptionsInsertString");
-    const OptionsInForce in_force(options_);
-    check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
-    check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
-    check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
-    check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    try {
+      check(PetscOptionsCreate(&options_), "PetscOptionsCreate");
+      check(PetscOptionsInsertString(options_, "-mat_mumps_icntl_12 1"), "PetscOptionsInsertString");
+      check(PetscOptionsInsertString(options_, options.c_str()), "PetscOptionsInsertString");
+      std::string command_line;
+      for (const std::string& word : parallel::command_line_options()) command_line += word + " ";
+      check(PetscOptionsInsertString(options_, command_line.c_str()), "PetscOptionsInsertString");
+      const OptionsInForce in_force(options_);
+      check(KSPCreate(PETSC_COMM_WORLD, &ksp_), "KSPCreate");
+      check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+      PC pc = nullptr;
+      check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+      check(PCSetType(pc, symmetric ? PCCHOLESKY : PCLU), "PCSetType");
+      check(PCFactorSetMatSolverType(pc, MATSOLVERMUMPS), "PCFactorSetMatSolverType");
+      check(KSPSetFromOptions(ksp_), "KSPSetFromOptions");
+    } catch (...) {
+      release();  // the destructor does not run for an object whose constructor threw
+      throw;
+    }
   }
-  ~PetscSolver() override {
-    if (!parallel::active()) return;  // MPI already stopped at exit: nothing can be freed any more
-    VecScatterDestroy(&gather_);
-    VecDestroy(&whole_);
-    VecDestroy(&x_);
-    VecDestroy(&b_);
-    MatDestroy(&a_);
-    KSPDestroy(&ksp_);
-    PetscOptionsDestroy(&options_);
-  }
+  ~PetscSolver() override { release(); }
   PetscSolver(const PetscSolver&) = delete;
   PetscSolver& operator=(const PetscSolver&) = delete;
 
@@ -176,6 +172,18 @@ class PetscSolver final : public LinearSolver {
   std::string name() const override { return symmetric_ ? "petsc_cholesky" : "petsc_lu"; }
 
  private:
+  /// Frees what PETSc holds for this solver (what was created so far).
+  void release() {
+    if (!parallel::active()) return;  // MPI already stopped at exit: nothing can be freed any more
+    VecScatterDestroy(&gather_);
+    VecDestroy(&whole_);
+    VecDestroy(&x_);
+    VecDestroy(&b_);
+    MatDestroy(&a_);
+    KSPDestroy(&ksp_);
+    PetscOptionsDestroy(&options_);
+  }
+
   /// Forgets the operator and its factor (the solver's type and options stay): the next factorize() sets the
   /// operator again and analyses it, whatever its size.
   void reset() {
