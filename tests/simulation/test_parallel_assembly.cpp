@@ -26,6 +26,7 @@
 #include "nodus/simulation/equilibrium_problem.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "nodus/solver/ordered_assembly.hpp"
+#include "nodus/solver/sparse_assembler.hpp"
 
 namespace nodus::simulation {
 namespace {
@@ -146,7 +147,8 @@ TEST(ParallelAssembly, ResidualAndTangentDoNotDependOnTheNumberOfThreads) {
   EXPECT_GT(slip, 10);
   EXPECT_GT(stick, 10);
   EXPECT_GT(serial.residual.norm(), 0.0);
-  for (int threads : {2, 3}) expect_identical(serial, bundle.evaluate(threads), threads);
+  // 4 and 7: more adders than this test's blocks of work per ring, and more threads than CI's cores.
+  for (int threads : {2, 3, 4, 7}) expect_identical(serial, bundle.evaluate(threads), threads);
   // Twice on the same thread count: the buffers kept across calls carry nothing over.
   expect_identical(serial, bundle.evaluate(1), 1);
   omp_set_num_threads(max_threads);
@@ -193,6 +195,58 @@ solver: {linear_solver: klu}
           << threads << " threads, unknown " << i;
   }
   omp_set_num_threads(max_threads);
+}
+
+// The threads' ranges of blocks (solver::SparseAssembler::split_columns): consecutive, covering every block
+// once, each with about its share of the matrix's entries. A chain of 120 blocks of 9 unknowns, blocks 0 to 9
+// also all coupled together (their columns much fuller), some unknowns prescribed.
+TEST(ParallelAssembly, ColumnsSplitIntoConsecutiveRangesOfEqualWork) {
+  constexpr int kBlocks = 120, kSize = 9;
+  std::vector<std::vector<int>> groups;
+  for (int b = 0; b + 1 < kBlocks; ++b) groups.push_back({b, b + 1});
+  groups.emplace_back();
+  for (int b = 0; b < 10; ++b) groups.back().push_back(b);
+  std::vector<int> free_index(kBlocks * kSize);
+  for (int i = 0, row = 0; i < kBlocks * kSize; ++i)
+    free_index[static_cast<std::size_t>(i)] = i % 7 == 3 ? -1 : row++;
+  const solver::SparseAssembler assembler(kSize, free_index, groups);
+  const solver::SparseMatrix& a = assembler.matrix();
+  // Entries in the columns of blocks [first, last).
+  const auto entries = [&](int first, int last) {
+    long long n = 0;
+    for (int dof = first * kSize; dof < std::min(last, kBlocks) * kSize; ++dof)
+      if (const int col = free_index[static_cast<std::size_t>(dof)]; col >= 0)
+        n += a.outerIndexPtr()[col + 1] - a.outerIndexPtr()[col];
+    return n;
+  };
+  const long long total = entries(0, kBlocks);
+  ASSERT_EQ(total, a.nonZeros());
+  long long fullest = 0;
+  for (int b = 0; b < kBlocks; ++b) fullest = std::max(fullest, entries(b, b + 1));
+  for (int parts : {1, 2, 3, 4, 7, 16}) {
+    const std::vector<solver::BlockRange> ranges = assembler.split_columns(parts);
+    ASSERT_EQ(ranges.size(), static_cast<std::size_t>(parts));
+    EXPECT_EQ(ranges.front().first, 0);
+    EXPECT_GE(ranges.back().last, kBlocks);  // open-ended
+    for (std::size_t p = 0; p < ranges.size(); ++p) {
+      if (p > 0) {
+        EXPECT_EQ(ranges[p].first, ranges[p - 1].last) << parts << " parts";
+      }
+      EXPECT_LE(ranges[p].first, ranges[p].last) << parts << " parts";
+      // Within one block's entries (and its one count) of an equal share.
+      EXPECT_NEAR(static_cast<double>(entries(ranges[p].first, ranges[p].last)),
+                  static_cast<double>(total) / parts, static_cast<double>(fullest + kBlocks / parts + 1))
+          << parts << " parts, range " << p;
+    }
+  }
+  // Without a tangent the blocks are split by their number.
+  const std::vector<solver::BlockRange> even = solver::even_split(10, 4);
+  ASSERT_EQ(even.size(), 4u);
+  EXPECT_EQ(even[0].first, 0);
+  EXPECT_EQ(even[1].first, 2);
+  EXPECT_EQ(even[2].first, 5);
+  EXPECT_EQ(even[3].first, 7);
+  EXPECT_TRUE(even[3].contains(1000));
 }
 
 }  // namespace

@@ -43,18 +43,23 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
                      friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_, r);
     states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
   };
-  const auto scatter = [&](std::size_t k, const ContactResponse& r) {
+  // Each thread adds the entries of its own nodes (blocks), so the sums do not depend on the thread count.
+  const auto scatter = [&](std::size_t k, const ContactResponse& r, solver::BlockRange nodes_added) {
     constexpr int kNode = beam::kNodeDofs;
     const ContactElement& e = geometry_.elements[k];
     const int ni = model_.element_first_node(e.particle_i.element);
     const int nj = model_.element_first_node(e.particle_j.element);
     const std::array<int, 6> blocks{ni, ni + 1, ni + 2, nj, nj + 1, nj + 2};
     for (int b = 0; b < 6; ++b)
-      residual.segment<kNode>(model_.node_dof(blocks[static_cast<std::size_t>(b)])) +=
-          r.force.segment<kNode>(kNode * b);
-    if (tangent) tangent->add(blocks, r.tangent);
+      if (nodes_added.contains(blocks[static_cast<std::size_t>(b)]))
+        residual.segment<kNode>(model_.node_dof(blocks[static_cast<std::size_t>(b)])) +=
+            r.force.segment<kNode>(kNode * b);
+    if (tangent) tangent->add(blocks, r.tangent, nodes_added);
   };
-  assembly_.run(geometry_.elements.size(), compute, scatter);
+  const auto split = [&](int parts) {
+    return tangent ? tangent->split_columns(parts) : solver::even_split(model_.dofs().num_blocks(), parts);
+  };
+  assembly_.run(geometry_.elements.size(), compute, scatter, split);
   if (spdlog::should_log(spdlog::level::debug)) log_regime_changes();
 }
 

@@ -95,7 +95,36 @@ int SparseAssembler::value_offset(int row, int col) const {
   return static_cast<int>(it - matrix_.innerIndexPtr());
 }
 
-void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k) {
+std::vector<BlockRange> SparseAssembler::split_columns(int parts) const {
+  const int blocks = static_cast<int>(offsets_.size()) - 1;
+  // The entries in the columns of blocks [0, b), plus one a block (a block with no free unknown still costs
+  // its test).
+  std::vector<long long> entries(static_cast<std::size_t>(blocks) + 1, 0);
+  const int* outer = matrix_.outerIndexPtr();
+  for (int b = 0; b < blocks; ++b) {
+    long long in_block = 1;
+    for (int dof = offsets_[static_cast<std::size_t>(b)]; dof < offsets_[static_cast<std::size_t>(b) + 1];
+         ++dof) {
+      const int col = free_index_[static_cast<std::size_t>(dof)];
+      if (col >= 0) in_block += outer[col + 1] - outer[col];
+    }
+    entries[static_cast<std::size_t>(b) + 1] = entries[static_cast<std::size_t>(b)] + in_block;
+  }
+  std::vector<BlockRange> ranges = even_split(blocks, parts);
+  const auto n = static_cast<long long>(ranges.size());
+  for (long long p = 1; p < n; ++p) {
+    const long long target = entries.back() * p / n;
+    const auto at = std::lower_bound(entries.begin(), entries.end(), target);
+    const int first = static_cast<int>(at - entries.begin());
+    ranges[static_cast<std::size_t>(p)].first =
+        std::max(first, ranges[static_cast<std::size_t>(p) - 1].first);
+    ranges[static_cast<std::size_t>(p) - 1].last = ranges[static_cast<std::size_t>(p)].first;
+  }
+  return ranges;
+}
+
+void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k,
+                          BlockRange columns) {
   const auto block_first = [&](int b) { return offsets_[static_cast<std::size_t>(b)]; };
   const auto block_size = [&](int b) {
     return offsets_[static_cast<std::size_t>(b) + 1] - offsets_[static_cast<std::size_t>(b)];
@@ -106,6 +135,10 @@ void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Ei
   double* values = matrix_.valuePtr();
   int j = 0;  // column of k
   for (int column_block : blocks) {
+    if (!columns.contains(column_block)) {
+      j += block_size(column_block);
+      continue;
+    }
     const int* column_free = free_index_.data() + block_first(column_block);
     for (int c = 0; c < block_size(column_block); ++c, ++j) {
       const int col = column_free[c];

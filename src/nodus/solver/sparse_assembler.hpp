@@ -9,6 +9,8 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 
+#include "nodus/solver/ordered_assembly.hpp"
+
 namespace nodus::solver {
 
 using SparseMatrix = Eigen::SparseMatrix<double, Eigen::ColMajor, int>;
@@ -38,8 +40,13 @@ class SparseAssembler {
 
   int size() const { return static_cast<int>(matrix_.rows()); }
   void set_zero();
-  /// Adds the dense matrix `k` of the unknowns of `blocks` (each block's unknowns, in order).
-  void add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k);
+  /// Adds the dense matrix `k` of the unknowns of `blocks` (each block's unknowns, in order), in the columns
+  /// of the blocks of `columns` only (by default all): threads that add into different ranges of columns
+  /// write different entries.
+  void add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k, BlockRange columns = {});
+  /// The blocks split into `parts` consecutive ranges of nearly equal numbers of matrix entries in their
+  /// columns, for adding on `parts` threads (OrderedAssembly).
+  std::vector<BlockRange> split_columns(int parts) const;
   const SparseMatrix& matrix() const { return matrix_; }
   const std::vector<int>& free_index() const { return free_index_; }
   /// Whether this assembler's pattern is the one of `free_index` and `adjacency`: then a new assembler for
