@@ -72,6 +72,15 @@ def main():
             if c.returncode != 0:
                 failures.append(f"{name} on {n} ranks differs from the serial run: {c.stdout}")
 
+    # Several ranks share the evaluation (each its own blocks' rows), unless the factor is kept (below).
+    r = mpirun(launcher, 2, [exe, "run", str(work / "twisted_pair_detection_petsc.yaml"), "--out",
+                             str(work / "distributed_log"), "--verbose"])
+    shared = "evaluation distributed over 2 ranks" in r.stderr
+    print(f"twisted_pair_detection on 2 ranks: evaluation {'distributed' if shared else 'NOT distributed'}")
+    if r.returncode != 0 or not shared:
+        failures.append(f"twisted_pair_detection on 2 ranks: status {r.returncode}, no distributed evaluation "
+                        f"in the log: {r.stderr[-500:]}")
+
     # The lagged factorisation (solver.reuse_factor: GMRES preconditioned by a kept factor, refactorised when
     # it no longer serves) through PETSc on 2 ranks against the same policy in one process.
     lagged_serial, lagged_petsc = work / "tool_drag_lagged.yaml", work / "tool_drag_lagged_petsc.yaml"

@@ -249,5 +249,54 @@ TEST(ParallelAssembly, ColumnsSplitIntoConsecutiveRangesOfEqualWork) {
   EXPECT_TRUE(even[3].contains(1000));
 }
 
+// A rank of a distributed run assembles the rows of its own blocks only (SparseAssembler::set_rows): each
+// rank's rows are bitwise those of the whole assembly, the other rows stay zero, and the ranks' rows
+// together are the whole matrix.
+TEST(ParallelAssembly, EachRanksRowsAreThoseOfTheWholeMatrix) {
+  constexpr int kBlocks = 40, kSize = 9;
+  std::vector<std::vector<int>> groups;
+  for (int b = 0; b + 2 < kBlocks; b += 2) groups.push_back({b, b + 1, b + 2});
+  for (int b = 0; b + 7 < kBlocks; b += 3) groups.push_back({b, b + 7});  // contact-like couplings
+  std::vector<int> free_index(kBlocks * kSize);
+  for (int i = 0, row = 0; i < kBlocks * kSize; ++i)
+    free_index[static_cast<std::size_t>(i)] = i % 5 == 2 ? -1 : row++;
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  std::vector<Eigen::MatrixXd> blocks;
+  for (const std::vector<int>& g : groups) {
+    const auto m = static_cast<Eigen::Index>(g.size()) * kSize;
+    blocks.push_back(Eigen::MatrixXd::NullaryExpr(m, m, [&] { return u(rng); }));
+  }
+  // Each group added twice, so that entries are sums.
+  const auto assemble = [&](solver::SparseAssembler& a) {
+    a.set_zero();
+    for (int pass = 0; pass < 2; ++pass)
+      for (std::size_t k = 0; k < groups.size(); ++k) a.add(groups[k], blocks[k]);
+  };
+  solver::SparseAssembler whole(kSize, free_index, groups);
+  assemble(whole);
+  const solver::SparseMatrix& w = whole.matrix();
+  Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(w.rows(), w.cols());
+  for (const solver::BlockRange& rows : whole.split_columns(3)) {
+    solver::SparseAssembler part(kSize, free_index, groups);
+    part.set_rows(rows);
+    assemble(part);
+    const solver::SparseMatrix& p = part.matrix();
+    ASSERT_EQ(p.nonZeros(), w.nonZeros());
+    for (Eigen::Index c = 0; c < p.outerSize(); ++c)
+      for (solver::SparseMatrix::InnerIterator it(p, c), jt(w, c); it; ++it, ++jt) {
+        // The block of the entry's row.
+        int dof = 0;
+        while (free_index[static_cast<std::size_t>(dof)] != it.row()) ++dof;
+        if (rows.contains(dof / kSize))
+          ASSERT_TRUE(same_bits(it.value(), jt.value())) << "row " << it.row() << ", column " << c;
+        else
+          ASSERT_EQ(it.value(), 0.0) << "row " << it.row() << ", column " << c;
+      }
+    sum += Eigen::MatrixXd(p);
+  }
+  EXPECT_EQ(sum, Eigen::MatrixXd(w));
+}
+
 }  // namespace
 }  // namespace nodus::simulation

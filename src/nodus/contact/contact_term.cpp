@@ -34,7 +34,25 @@ void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> fri
 
 void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
                       solver::SparseAssembler* tangent) {
-  const auto compute = [&](std::size_t k, ContactResponse& r) {
+  // The contact elements with a node among state.blocks (all of them, unless the run is distributed), in
+  // order; the others keep their last state.
+  const std::size_t count = geometry_.elements.size();
+  std::vector<std::size_t> some;
+  const bool all = state.blocks.first <= 0 && state.blocks.last >= model_.num_nodes();
+  if (!all)
+    for (std::size_t k = 0; k < count; ++k) {
+      const ContactElement& e = geometry_.elements[k];
+      const int ni = model_.element_first_node(e.particle_i.element);
+      const int nj = model_.element_first_node(e.particle_j.element);
+      for (int n : {ni, ni + 1, ni + 2, nj, nj + 1, nj + 2})
+        if (state.blocks.contains(n)) {
+          some.push_back(k);
+          break;
+        }
+    }
+  const auto element = [&](std::size_t i) { return all ? i : some[i]; };
+  const auto compute = [&](std::size_t i, ContactResponse& r) {
+    const std::size_t k = element(i);
     const ContactElement& e = geometry_.elements[k];
     const int ei = e.particle_i.element, ej = e.particle_j.element;
     const NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
@@ -44,9 +62,9 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
     states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
   };
   // Each thread adds the entries of its own nodes (blocks), so the sums do not depend on the thread count.
-  const auto scatter = [&](std::size_t k, const ContactResponse& r, solver::BlockRange nodes_added) {
+  const auto scatter = [&](std::size_t i, const ContactResponse& r, solver::BlockRange nodes_added) {
     constexpr int kNode = beam::kNodeDofs;
-    const ContactElement& e = geometry_.elements[k];
+    const ContactElement& e = geometry_.elements[element(i)];
     const int ni = model_.element_first_node(e.particle_i.element);
     const int nj = model_.element_first_node(e.particle_j.element);
     const std::array<int, 6> blocks{ni, ni + 1, ni + 2, nj, nj + 1, nj + 2};
@@ -59,7 +77,7 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
   const auto split = [&](int parts) {
     return tangent ? tangent->split_columns(parts) : solver::even_split(model_.dofs().num_blocks(), parts);
   };
-  assembly_.run(geometry_.elements.size(), compute, scatter, split);
+  assembly_.run(all ? count : some.size(), compute, scatter, split);
   if (spdlog::should_log(spdlog::level::debug)) log_regime_changes();
 }
 

@@ -27,7 +27,7 @@ void InternalForcesTerm::couplings(std::vector<std::vector<int>>& groups) const 
 
 void InternalForcesTerm::add(const TermState& state, Eigen::VectorXd& residual,
                              solver::SparseAssembler* tangent) {
-  model_.add_internal_force(state.x, residual, tangent, assembly_);
+  model_.add_internal_force(state.x, residual, tangent, assembly_, state.blocks);
 }
 
 }  // namespace nodus::model

@@ -142,15 +142,26 @@ void Model::internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
 }
 
 void Model::add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
-                               solver::SparseAssembler* assembler, InternalForceAssembly& assembly) const {
-  const auto compute = [&](std::size_t e, ElementForces& out) {
+                               solver::SparseAssembler* assembler, InternalForceAssembly& assembly,
+                               solver::BlockRange blocks) const {
+  // The elements with a node among `blocks` (all of them, unless the run is distributed), in order.
+  std::vector<int> some;
+  const bool all = blocks.first <= 0 && blocks.last >= num_nodes();
+  if (!all)
+    for (int e = 0; e < num_elements(); ++e) {
+      const int n = elements_[static_cast<std::size_t>(e)].first_node;
+      if (blocks.contains(n) || blocks.contains(n + 1) || blocks.contains(n + 2)) some.push_back(e);
+    }
+  const auto element = [&](std::size_t k) { return all ? k : static_cast<std::size_t>(some[k]); };
+  const auto compute = [&](std::size_t k, ElementForces& out) {
+    const std::size_t e = element(k);
     beam::element_internal_force(gather(x, static_cast<int>(e)),
                                  properties_[static_cast<std::size_t>(elements_[e].beam)], out.force,
                                  assembler ? &out.tangent : nullptr);
   };
   // Each thread adds the entries of its own nodes (blocks), so the sums do not depend on the thread count.
-  const auto scatter = [&](std::size_t e, const ElementForces& in, solver::BlockRange nodes_added) {
-    const int first_node = elements_[e].first_node;
+  const auto scatter = [&](std::size_t k, const ElementForces& in, solver::BlockRange nodes_added) {
+    const int first_node = elements_[element(k)].first_node;
     for (int a = 0; a < 3; ++a)
       if (nodes_added.contains(first_node + a))
         force.segment<beam::kNodeDofs>(node_dof(first_node + a)) +=
@@ -164,7 +175,7 @@ void Model::add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
     return assembler ? assembler->split_columns(parts) : solver::even_split(dofs_.num_blocks(), parts);
   };
   // The force alone costs about 0.5 us per element, 1/20 of the force and tangent (docs/performance.md).
-  assembly.run(elements_.size(), compute, scatter, split, assembler ? 1.0 : 0.05);
+  assembly.run(all ? elements_.size() : some.size(), compute, scatter, split, assembler ? 1.0 : 0.05);
 }
 
 }  // namespace nodus::model

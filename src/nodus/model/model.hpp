@@ -137,9 +137,11 @@ class Model {
                       solver::SparseAssembler* assembler) const;
   /// Adds the internal forces to `force` (num_dofs() values) and, if `assembler` is not null, their tangent.
   /// The elements are evaluated on all threads, and added up in element order (`assembly` holds the
-  /// buffers): the sums do not depend on the number of threads.
+  /// buffers): the sums do not depend on the number of threads. Only the elements with a node among
+  /// `blocks` are evaluated (a rank of a distributed run: its rows are then those of one process).
   void add_internal_force(const Eigen::VectorXd& x, Eigen::VectorXd& force,
-                          solver::SparseAssembler* assembler, InternalForceAssembly& assembly) const;
+                          solver::SparseAssembler* assembler, InternalForceAssembly& assembly,
+                          solver::BlockRange blocks = {}) const;
 
  private:
   struct Element {

@@ -11,6 +11,8 @@
 
 #include <Eigen/Core>
 
+#include "nodus/solver/ordered_assembly.hpp"
+
 namespace nodus::solver {
 class SparseAssembler;
 }
@@ -24,6 +26,10 @@ struct TermState {
   const Eigen::VectorXd& x_committed;  ///< at the last committed state
   double time = 0.0;                   ///< current load time [s]
   double time_committed = 0.0;         ///< load time of the last committed state [s]
+  /// The blocks whose rows (residual and tangent) this process computes: all of them, unless the run is
+  /// distributed over MPI ranks (docs/parallel.md). A term may then skip the elements that touch none of
+  /// them; whatever it adds to other rows is discarded.
+  solver::BlockRange blocks{};
 };
 
 /// What bounds the accuracy that can be asked of the residual, per term (EquilibriumProblem combines them).

@@ -158,6 +158,31 @@ void abort_all(int status) {
   if (size() > 1) MPI_Abort(MPI_COMM_WORLD, status);
 }
 
+bool root_value(bool value) {
+  if (size() <= 1) return value;
+  int v = value ? 1 : 0;
+  if (MPI_Bcast(&v, 1, MPI_INT, 0, MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Bcast failed");
+  return v != 0;
+}
+
+void share_segments(double* values, const std::vector<int>& starts) {
+  const int n = size();
+  if (n <= 1) return;
+  std::vector<int> counts(static_cast<std::size_t>(n));
+  for (std::size_t r = 0; r < counts.size(); ++r) counts[r] = starts[r + 1] - starts[r];
+  if (MPI_Allgatherv(MPI_IN_PLACE, 0, MPI_DATATYPE_NULL, values, counts.data(), starts.data(), MPI_DOUBLE,
+                     MPI_COMM_WORLD) != MPI_SUCCESS)
+    throw std::runtime_error("MPI_Allgatherv failed");
+}
+
+void sum_over_ranks(double* values, std::size_t count) {
+  if (size() <= 1 || count == 0) return;
+  if (MPI_Allreduce(MPI_IN_PLACE, values, static_cast<int>(count), MPI_DOUBLE, MPI_SUM, MPI_COMM_WORLD) !=
+      MPI_SUCCESS)
+    throw std::runtime_error("MPI_Allreduce failed");
+}
+
 #else  // without PETSc: one process
 
 bool available() {
@@ -182,6 +207,11 @@ int size() {
 }
 void barrier() {}
 void abort_all(int) {}
+bool root_value(bool value) {
+  return value;
+}
+void share_segments(double*, const std::vector<int>&) {}
+void sum_over_ranks(double*, std::size_t) {}
 #endif
 
 }  // namespace nodus::parallel

@@ -7,6 +7,7 @@
 /// petsc), whose solution every rank receives bit for bit, so the ranks take the same Newton path. Rank 0
 /// alone writes files and logs (docs/parallel.md).
 
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -42,6 +43,15 @@ inline bool is_root() {
 
 /// Waits until every rank has reached this point (a no-op on one rank).
 void barrier();
+/// Rank 0's `value`, on every rank (every rank must call it): for a decision that only rank 0 can take, such
+/// as whether to log (the other ranks do not log), when it leads to collective work.
+bool root_value(bool value);
+/// Every rank's segment [starts[r], starts[r + 1]) of `values` to every rank (the same array on all ranks;
+/// starts has size() + 1 entries): afterwards every rank holds every segment as its owner computed it.
+void share_segments(double* values, const std::vector<int>& starts);
+/// The sum over the ranks of `values` (count of them), on every rank. Where at most one rank holds a value
+/// other than zero, the sum is that value exactly.
+void sum_over_ranks(double* values, std::size_t count);
 
 /// Ends every rank with this exit status, when there are several (MPI_Abort): one rank's failure would
 /// otherwise leave the others waiting for it. Returns on one rank.

@@ -6,6 +6,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <spdlog/spdlog.h>
+
 #include "nodus/loading/load_term.hpp"
 #include "nodus/model/internal_forces_term.hpp"
 #include "nodus/model/rotation_vector.hpp"
@@ -102,7 +104,80 @@ bool EquilibriumProblem::rebuild_pattern() {
   if (assembler_ && assembler_->has_pattern(free_index_, adjacency)) return false;
   assembler_ = std::make_unique<solver::SparseAssembler>(offsets, free_index_, std::move(adjacency));
   ++pattern_version_;
+  if (distributed_) split_among_ranks();
   return true;
+}
+
+void EquilibriumProblem::distribute(bool on) {
+  distributed_ = on && parallel::size() > 1;
+  if (distributed_) {
+    split_among_ranks();
+  } else {
+    rank_blocks_.clear();
+    if (assembler_) assembler_->set_rows({});
+  }
+}
+
+void EquilibriumProblem::split_among_ranks() {
+  if (!assembler_) return;
+  const int ranks = parallel::size();
+  // Balanced by the tangent's entries in the blocks' columns (its rows: the pattern is symmetric), which
+  // follow the elements and contact elements at the blocks.
+  rank_blocks_ = assembler_->split_columns(ranks);
+  assembler_->set_rows(rank_blocks_[static_cast<std::size_t>(parallel::rank())]);
+  const std::vector<int>& offsets = model_.dofs().offsets();
+  const int blocks = static_cast<int>(offsets.size()) - 1;
+  rank_dofs_.assign(static_cast<std::size_t>(ranks) + 1, model_.num_dofs());
+  rank_rows_.assign(static_cast<std::size_t>(ranks) + 1, size());
+  for (int r = 0; r < ranks; ++r) {
+    const int first =
+        offsets[static_cast<std::size_t>(std::min(rank_blocks_[static_cast<std::size_t>(r)].first, blocks))];
+    rank_dofs_[static_cast<std::size_t>(r)] = first;
+    // The free rows before unknown `first`.
+    rank_rows_[static_cast<std::size_t>(r)] =
+        static_cast<int>(std::lower_bound(free_dofs_.begin(), free_dofs_.end(), first) - free_dofs_.begin());
+  }
+  spdlog::debug(
+      "evaluation distributed over {} ranks: rank 0 computes blocks [0, {}), free rows [0, {}) of {}", ranks,
+      rank_blocks_.front().last, rank_rows_[1], size());
+}
+
+std::pair<int, int> EquilibriumProblem::local_rows() const {
+  if (!distributed_) return {-1, -1};
+  const auto r = static_cast<std::size_t>(parallel::rank());
+  return {rank_rows_[r], rank_rows_[r + 1]};
+}
+
+void EquilibriumProblem::share_among_ranks() {
+  parallel::share_segments(residual_full_.data(), rank_dofs_);
+  // Each contact element's state as the rank that owns particle i's first node computed it (that rank
+  // evaluated the element): the others send zeros.
+  const solver::BlockRange mine = rank_blocks_[static_cast<std::size_t>(parallel::rank())];
+  const std::vector<contact::ContactElement>& elements = contact_->geometry().elements;
+  if (elements.empty()) return;
+  constexpr std::size_t kValues = 9;  // gap, R_N, tangential (3), reversible (3), slip
+  std::vector<double> packed(kValues * elements.size(), 0.0);
+  const std::vector<ContactState>& states = contact_->states();
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    if (!mine.contains(model_.element_first_node(elements[k].particle_i.element))) continue;
+    const ContactState& c = states[k];
+    double* p = packed.data() + kValues * k;
+    p[0] = c.gap;
+    p[1] = c.normal_reaction;
+    for (int d = 0; d < 3; ++d) {
+      p[2 + d] = c.tangential[d];
+      p[5 + d] = c.reversible[d];
+    }
+    p[8] = c.slip ? 1.0 : 0.0;
+  }
+  parallel::sum_over_ranks(packed.data(), packed.size());
+  std::vector<ContactState> shared(elements.size());
+  for (std::size_t k = 0; k < elements.size(); ++k) {
+    const double* p = packed.data() + kValues * k;
+    shared[k] = {p[0], p[1], Eigen::Vector3d(p[2], p[3], p[4]), Eigen::Vector3d(p[5], p[6], p[7]),
+                 p[8] != 0.0};
+  }
+  contact_->set_states(std::move(shared));
 }
 
 Eigen::VectorXd EquilibriumProblem::unknowns() const {
@@ -148,6 +223,7 @@ void EquilibriumProblem::evaluate(Eigen::VectorXd& residual, bool with_tangent) 
   residual_full_.setZero(model_.num_dofs());
   const model::TermState state = term_state();
   for (const auto& term : terms_) term->add(state, residual_full_, tangent);
+  if (distributed_) share_among_ranks();
   residual.resize(size());
   for (int i = 0; i < size(); ++i) residual[i] = residual_full_[free_dofs_[static_cast<std::size_t>(i)]];
   // Force scale: the applied loads and the support reactions, above the terms' round-off floors, plus the

@@ -6,6 +6,7 @@
 
 #include <memory>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -15,6 +16,7 @@
 #include "nodus/model/model.hpp"
 #include "nodus/model/rotation_vector.hpp"
 #include "nodus/model/term.hpp"
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/simulation/drag_term.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/sparse_assembler.hpp"
@@ -127,6 +129,18 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   /// Per contact element, at the last evaluation.
   const std::vector<ContactState>& contact_states() const { return contact_->states(); }
 
+  /// Distributes the evaluation over the MPI ranks of the run, or not (docs/parallel.md): each rank then
+  /// evaluates the elements that touch its own range of blocks (consecutive nodes, balanced by the entries of
+  /// the tangent), and computes those blocks' rows of the residual and the tangent only, summed in element
+  /// order as one process would. The ranks then exchange their residual rows and the states of the contact
+  /// elements they own, so every rank holds the whole residual, bit for bit as one process computes it, while
+  /// the tangent stays distributed: only a solver that reads each rank's own rows (petsc, local_rows()) can
+  /// factorise it. Without MPI, or on one rank, nothing changes.
+  void distribute(bool on);
+  bool distributed() const { return distributed_; }
+  /// The free rows [first, last) of this rank's blocks when distributed, else {-1, -1}.
+  std::pair<int, int> local_rows() const;
+
  private:
   const model::Model& model_;
   loading::Conditions& conditions_;
@@ -155,7 +169,21 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   CommittedContact contact_committed_;
   bool contact_changed_ = false;  ///< set_contact() was called since the last commit
 
-  model::TermState term_state() const { return {x_, x_committed_, time_, time_committed_}; }
+  /// Distributed over MPI ranks (distribute()): the blocks whose rows each rank computes, and where their
+  /// unknowns and free rows begin (one more entry: the totals).
+  bool distributed_ = false;
+  std::vector<solver::BlockRange> rank_blocks_;
+  std::vector<int> rank_dofs_, rank_rows_;
+  /// Sets the ranges above from the pattern (a new one balances the ranks anew).
+  void split_among_ranks();
+  /// After the terms of a distributed evaluation: every rank receives the other ranks' rows of the residual
+  /// and the states of the contact elements they own.
+  void share_among_ranks();
+
+  model::TermState term_state() const {
+    return {x_, x_committed_, time_, time_committed_,
+            distributed_ ? rank_blocks_[static_cast<std::size_t>(parallel::rank())] : solver::BlockRange{}};
+  }
 };
 
 }  // namespace nodus::simulation

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/parallel/mpi_session.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
 #include "nodus/solver/linear_solver.hpp"
 #include "nodus/solver/load_stepping.hpp"
@@ -334,10 +335,14 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.steps = counters_.steps;
   summary.newton_iterations = counters_.newton_iterations;
   const bool symmetric = !laws_.friction_normal_coupling && !laws_.linearized_normals;
+  const bool petsc = scenario_.solver.linear_solver == scenario::LinearSolverKind::petsc;
+  // On several ranks the petsc solver takes each rank's own rows, so the evaluation is distributed; not with
+  // the kept factor, whose GMRES multiplies by the whole tangent on every rank (docs/parallel.md).
+  problem_->distribute(petsc && !scenario_.solver.reuse_factor);
   auto linear =
-      scenario_.solver.linear_solver == scenario::LinearSolverKind::petsc
-          ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options)
-          : solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver, symmetric));
+      petsc ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options,
+                                        [this] { return problem_->local_rows(); })
+            : solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver, symmetric));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.line_search = scenario_.solver.line_search;
@@ -408,7 +413,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
       progress_.stage_start_time = t0;
       progress_.stepper = solver::start_stepping(t0, t1, control);
       newton.reanalyze();
-      if (spdlog::should_log(spdlog::level::debug)) {
+      // Rank 0 alone logs, but a distributed evaluation needs every rank.
+      if (parallel::root_value(spdlog::should_log(spdlog::level::debug))) {
         Eigen::VectorXd residual;
         problem_->set_time(t0);
         problem_->evaluate(residual, false);

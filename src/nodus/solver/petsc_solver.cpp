@@ -33,7 +33,8 @@ class OptionsInForce {
 
 class PetscSolver final : public LinearSolver {
  public:
-  PetscSolver(bool symmetric, const std::string& options) : symmetric_(symmetric) {
+  PetscSolver(bool symmetric, const std::string& options, LocalRows local_rows)
+      : symmetric_(symmetric), local_rows_(std::move(local_rows)) {
     if (!parallel::well_formed_options(options))
       throw std::invalid_argument(
           fmt::format("solver.petsc_options: expected PETSc options (-name [value] ...), got '{}'", options));
@@ -76,10 +77,17 @@ class PetscSolver final : public LinearSolver {
     MatDestroy(&a_);
     const PetscInt n = static_cast<PetscInt>(a.rows());
     PetscInt local = PETSC_DECIDE, global = n;
+    const std::pair<int, int> given = local_rows_ ? local_rows_() : std::pair{-1, -1};
+    if (given.first >= 0) local = given.second - given.first;  // the rows this rank assembled
     check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
     check(MPI_Scan(&local, &last_, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD) == MPI_SUCCESS ? 0 : 1,
           "MPI_Scan");
     first_ = last_ - local;
+    if (given.first >= 0 && (given.first != first_ || given.second != last_))
+      throw std::logic_error(
+          fmt::format("PetscSolver: rows [{}, {}) given for this rank, [{}, {}) follow from "
+                      "the ranks' counts",
+                      given.first, given.second, first_, last_));
     // This rank's rows, compressed: the tangent is stored by columns, so each entry of the owned rows is
     // found once here and its place in the value array kept for the factorisations.
     std::vector<PetscInt> counts(static_cast<std::size_t>(local), 0);
@@ -192,6 +200,7 @@ class PetscSolver final : public LinearSolver {
   }
 
   bool symmetric_;
+  LocalRows local_rows_;
   PetscOptions options_ = nullptr;
   KSP ksp_ = nullptr;
   Mat a_ = nullptr;
@@ -208,13 +217,14 @@ class PetscSolver final : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_petsc_solver(bool symmetric, const std::string& options) {
-  return std::make_unique<PetscSolver>(symmetric, options);
+std::unique_ptr<LinearSolver> make_petsc_solver(bool symmetric, const std::string& options,
+                                                LocalRows local_rows) {
+  return std::make_unique<PetscSolver>(symmetric, options, std::move(local_rows));
 }
 
 #else
 
-std::unique_ptr<LinearSolver> make_petsc_solver(bool, const std::string&) {
+std::unique_ptr<LinearSolver> make_petsc_solver(bool, const std::string&, LocalRows) {
   throw std::invalid_argument(
       "solver.linear_solver: petsc needs nodus built with PETSc (install petsc-dev and rebuild)");
 }

@@ -146,6 +146,10 @@ void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Ei
       int i = 0;  // first row of k of the row block
       for (int row_block : blocks) {
         const int size = block_size(row_block);
+        if (!rows_.contains(row_block)) {
+          i += size;
+          continue;
+        }
         // The free unknowns of a block have consecutive reduced indices, so they sit next to each other in
         // the column: one search per block.
         const int* free = free_index_.data() + block_first(row_block);

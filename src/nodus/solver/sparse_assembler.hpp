@@ -44,6 +44,10 @@ class SparseAssembler {
   /// of the blocks of `columns` only (by default all): threads that add into different ranges of columns
   /// write different entries.
   void add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k, BlockRange columns = {});
+  /// Only the rows of the blocks of `rows` are assembled from now on (by default all): a process of a
+  /// distributed run assembles the rows it owns (docs/parallel.md); the other rows keep their zeros.
+  void set_rows(BlockRange rows) { rows_ = rows; }
+  BlockRange rows() const { return rows_; }
   /// The blocks split into `parts` consecutive ranges of nearly equal numbers of matrix entries in their
   /// columns, for adding on `parts` threads (OrderedAssembly).
   std::vector<BlockRange> split_columns(int parts) const;
@@ -62,6 +66,7 @@ class SparseAssembler {
   std::vector<int> free_index_;
   BlockAdjacency adjacency_;
   SparseMatrix matrix_;
+  BlockRange rows_;
 };
 
 }  // namespace nodus::solver
