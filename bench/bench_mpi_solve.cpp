@@ -9,7 +9,8 @@
 // --distributed: each rank evaluates the elements at its own nodes and assembles their rows (the evaluation
 // of a petsc run on several ranks), instead of the whole problem.
 // Prints, on rank 0: the unknowns, the assembly time, the first factorisation (analysis included), the median
-// and the spread of REPEATS factorise-and-solve, and |K du - r| / |r|. Results: docs/parallel.md.
+// and the spread of REPEATS factorise-and-solve, and |K du - r| / |r|; then, for the rank with most, the
+// tangent's entries that rank holds and its peak resident memory. Results: docs/parallel.md.
 
 #include <algorithm>
 #include <chrono>
@@ -18,6 +19,8 @@
 #include <cstdlib>
 #include <string>
 #include <vector>
+
+#include <sys/resource.h>
 
 #include "bundle_problem.hpp"
 #include "nodus/parallel/mpi_session.hpp"
@@ -97,6 +100,20 @@ int main(int argc, char** argv) {
                         : "petsc (MUMPS LDL^T)",
           assembly, first, times[times.size() / 2], times.front(), times.back(), repeats, residual,
           ok ? "" : " (a factorisation failed)");
+    // Each rank's share of the tangent and its peak memory (kB on Linux), the largest over the ranks.
+    const auto ranks = static_cast<std::size_t>(nodus::parallel::size());
+    const auto me = static_cast<std::size_t>(nodus::parallel::rank());
+    std::vector<double> entries(ranks, 0.0), peak(ranks, 0.0);
+    entries[me] = static_cast<double>(s.problem->tangent().nonZeros());
+    rusage usage{};
+    getrusage(RUSAGE_SELF, &usage);
+    peak[me] = static_cast<double>(usage.ru_maxrss);
+    nodus::parallel::sum_over_ranks(entries.data(), entries.size());
+    nodus::parallel::sum_over_ranks(peak.data(), peak.size());
+    if (root)
+      std::printf("tangent entries held, largest rank: %.0f; peak resident memory, largest rank: %.0f MB\n",
+                  *std::max_element(entries.begin(), entries.end()),
+                  *std::max_element(peak.begin(), peak.end()) / 1024.0);
   }
   nodus::parallel::finalize();
   return 0;

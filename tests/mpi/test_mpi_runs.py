@@ -6,7 +6,7 @@
 For each scenario: the serial run as the scenario says (its own linear solver), then the same scenario with
 solver.linear_solver: petsc on 1, 2 and 3 ranks; each must give the same steps, the same contact counts and
 final nodes within 1e-8 mm (compare_runs.py). Then, on 2 ranks: the same for tool_drag with the lagged
-factorisation (solver.reuse_factor) against that policy in one process; bad input is reported once with exit status
+factorisation (solver.reuse_factor, PETSc's GMRES on the kept factor) against that policy in one process; bad input is reported once with exit status
 2 on every rank and nothing written; a run stopped after 7 steps and resumed ends with the files of the run
 never stopped, byte for byte. Needs the nodus Python module (PYTHONPATH) to rewrite the scenarios.
 """
@@ -82,14 +82,17 @@ def main():
                         f"in the log: {r.stderr[-500:]}")
 
     # The lagged factorisation (solver.reuse_factor: GMRES preconditioned by a kept factor, refactorised when
-    # it no longer serves) through PETSc on 2 ranks against the same policy in one process.
+    # it no longer serves) through PETSc on 2 ranks, the evaluation distributed as without it, against the same
+    # policy in one process. The GMRES differ (PETSc's on the right, tested on the true residual; Eigen's on
+    # the left, asked for 1e-3 of the tolerance on its preconditioned residual), so the counts may differ:
+    # the answer must not, and the factor must be kept for most iterations on both.
     lagged_serial, lagged_petsc = work / "tool_drag_lagged.yaml", work / "tool_drag_lagged_petsc.yaml"
     with_solver(examples / "tool_drag.yaml", lagged_serial, reuse_factor=True)
     with_solver(examples / "tool_drag.yaml", lagged_petsc, reuse_factor=True, linear_solver="petsc")
     serial, out = work / "tool_drag_lagged_serial", work / "tool_drag_lagged_petsc_2"
     r = subprocess.run([exe, "run", str(lagged_serial), "--out", str(serial), "--quiet"], capture_output=True,
                        text=True)
-    r2 = mpirun(launcher, 2, [exe, "run", str(lagged_petsc), "--out", str(out), "--quiet"])
+    r2 = mpirun(launcher, 2, [exe, "run", str(lagged_petsc), "--out", str(out), "--verbose"])
     if r.returncode != 0 or r2.returncode != 0:
         failures.append(f"lagged factorisation: exit status {r.returncode} serial, {r2.returncode} on 2 ranks: "
                         f"{r.stderr[-400:]} {r2.stderr[-400:]}")
@@ -98,13 +101,18 @@ def main():
                            capture_output=True, text=True)
         counts = [json.loads((d / "summary.json").read_text()) for d in (serial, out)]
         counts = [(s["newton_iterations"], s["factorizations"], s["krylov_iterations"]) for s in counts]
+        shared = "evaluation distributed over 2 ranks" in r2.stderr
         print("tool_drag with reuse_factor, 2 ranks: " + c.stdout.strip().replace("\n", "; ") +
-              "; (Newton iterations, factorisations, GMRES iterations): serial {}, 2 ranks {}".format(*counts))
+              "; (Newton iterations, factorisations, GMRES iterations): serial {}, 2 ranks {}".format(*counts) +
+              f"; evaluation {'distributed' if shared else 'NOT distributed'}")
         if c.returncode != 0:
             failures.append(f"tool_drag with reuse_factor on 2 ranks differs from the serial run: {c.stdout}")
-        # The policy itself: fewer factorisations than iterations, and the same ones as in one process.
-        if counts[0] != counts[1] or counts[1][1] >= counts[1][0] or counts[1][2] == 0:
-            failures.append(f"tool_drag with reuse_factor: counts {counts[0]} serial, {counts[1]} on 2 ranks")
+        if not shared:
+            failures.append("tool_drag with reuse_factor on 2 ranks: the evaluation was not distributed")
+        for where, (iterations, factorizations, krylov) in zip(["serial", "2 ranks"], counts):
+            if not (factorizations < iterations / 2 and krylov > 0):
+                failures.append(f"tool_drag with reuse_factor, {where}: {factorizations} factorisations for "
+                                f"{iterations} Newton iterations, {krylov} GMRES iterations")
 
     # Bad input: one message, status 2 on every rank (mpirun returns a rank's non-zero status), no folder.
     bad = work / "bad.yaml"

@@ -249,9 +249,10 @@ TEST(ParallelAssembly, ColumnsSplitIntoConsecutiveRangesOfEqualWork) {
   EXPECT_TRUE(even[3].contains(1000));
 }
 
-// A rank of a distributed run assembles the rows of its own blocks only (SparseAssembler::set_rows): each
-// rank's rows are bitwise those of the whole assembly, the other rows stay zero, and the ranks' rows
-// together are the whole matrix.
+// A rank of a distributed run holds and assembles the rows of its own blocks only (SparseAssembler's `rows`):
+// each rank's entries are bitwise those of the whole assembly, in its rows only, and the ranks' rows together
+// are the whole matrix. The ranks' blocks are balanced by the entries of their columns, which split_blocks
+// counts from the adjacency as split_columns counts them in the whole matrix.
 TEST(ParallelAssembly, EachRanksRowsAreThoseOfTheWholeMatrix) {
   constexpr int kBlocks = 40, kSize = 9;
   std::vector<std::vector<int>> groups;
@@ -260,6 +261,8 @@ TEST(ParallelAssembly, EachRanksRowsAreThoseOfTheWholeMatrix) {
   std::vector<int> free_index(kBlocks * kSize);
   for (int i = 0, row = 0; i < kBlocks * kSize; ++i)
     free_index[static_cast<std::size_t>(i)] = i % 5 == 2 ? -1 : row++;
+  std::vector<int> offsets;
+  for (int b = 0; b <= kBlocks; ++b) offsets.push_back(b * kSize);
   std::mt19937 rng(3);
   std::uniform_real_distribution<double> u(-1.0, 1.0);
   std::vector<Eigen::MatrixXd> blocks;
@@ -276,25 +279,36 @@ TEST(ParallelAssembly, EachRanksRowsAreThoseOfTheWholeMatrix) {
   solver::SparseAssembler whole(kSize, free_index, groups);
   assemble(whole);
   const solver::SparseMatrix& w = whole.matrix();
+  const solver::BlockAdjacency adjacency = solver::block_adjacency(kBlocks, groups);
+  const std::vector<solver::BlockRange> ranks = solver::split_blocks(offsets, free_index, adjacency, 3);
+  const std::vector<solver::BlockRange>& by_columns = whole.split_columns(3);
+  ASSERT_EQ(ranks.size(), 3U);
+  ASSERT_EQ(by_columns.size(), 3U);
+  for (std::size_t r = 0; r < ranks.size(); ++r) {
+    EXPECT_EQ(ranks[r].first, by_columns[r].first);
+    EXPECT_EQ(ranks[r].last, by_columns[r].last);
+  }
+  EXPECT_GT(ranks[1].first, 0);
+  EXPECT_GT(ranks[2].first, ranks[1].first);
+  // The block of each free row.
+  std::vector<int> block_of_row;
+  for (int i = 0; i < kBlocks * kSize; ++i)
+    if (free_index[static_cast<std::size_t>(i)] >= 0) block_of_row.push_back(i / kSize);
   Eigen::MatrixXd sum = Eigen::MatrixXd::Zero(w.rows(), w.cols());
-  for (const solver::BlockRange& rows : whole.split_columns(3)) {
-    solver::SparseAssembler part(kSize, free_index, groups);
-    part.set_rows(rows);
+  Eigen::Index entries = 0;
+  for (const solver::BlockRange& rows : ranks) {
+    solver::SparseAssembler part(offsets, free_index, adjacency, rows);
     assemble(part);
     const solver::SparseMatrix& p = part.matrix();
-    ASSERT_EQ(p.nonZeros(), w.nonZeros());
+    entries += p.nonZeros();
     for (Eigen::Index c = 0; c < p.outerSize(); ++c)
-      for (solver::SparseMatrix::InnerIterator it(p, c), jt(w, c); it; ++it, ++jt) {
-        // The block of the entry's row.
-        int dof = 0;
-        while (free_index[static_cast<std::size_t>(dof)] != it.row()) ++dof;
-        if (rows.contains(dof / kSize))
-          ASSERT_TRUE(same_bits(it.value(), jt.value())) << "row " << it.row() << ", column " << c;
-        else
-          ASSERT_EQ(it.value(), 0.0) << "row " << it.row() << ", column " << c;
+      for (solver::SparseMatrix::InnerIterator it(p, c); it; ++it) {
+        ASSERT_TRUE(rows.contains(block_of_row[static_cast<std::size_t>(it.row())])) << "row " << it.row();
+        ASSERT_TRUE(same_bits(it.value(), w.coeff(it.row(), c))) << "row " << it.row() << ", column " << c;
       }
     sum += Eigen::MatrixXd(p);
   }
+  EXPECT_EQ(entries, w.nonZeros());
   EXPECT_EQ(sum, Eigen::MatrixXd(w));
 }
 

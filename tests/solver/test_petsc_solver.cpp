@@ -1,5 +1,6 @@
 // The PETSc linear solver (solver.linear_solver: petsc) on one process, against Eigen's own factorisations:
-// Cholesky-type (MUMPS's LDL^T) and LU, a refactorisation with new values, a new pattern, a singular matrix.
+// Cholesky-type (MUMPS's LDL^T) and LU, a refactorisation with new values, a new pattern, a singular matrix,
+// GMRES on a kept factor.
 // Runs on several ranks are checked by tests/mpi/ (whole runs against the serial backend).
 #include <gtest/gtest.h>
 
@@ -89,6 +90,48 @@ TEST_F(PetscSolver, RefactorisesNewValuesAndAnalysesANewPattern) {
   ASSERT_TRUE(solver->factorize(c));
   const Eigen::VectorXd y = solver->solve(Eigen::VectorXd::Ones(90));
   EXPECT_LT((c * y - Eigen::VectorXd::Ones(90)).norm(), 1e-12 * std::sqrt(90.0));
+}
+
+// solver.reuse_factor through PETSc: GMRES preconditioned by the kept factor solves nearby matrices, of the
+// same pattern or of another one, to the tolerance on the true residual; it gives up after its iterations on
+// a matrix the factor no longer serves, and a factorisation then solves exactly again.
+TEST_F(PetscSolver, SolvesOnTheKeptFactorUntilItNoLongerServes) {
+  constexpr int kN = 200;
+  constexpr double kTolerance = 1e-8;
+  auto solver = nodus::solver::make_petsc_solver(false, "");
+  const SparseMatrix a = test_matrix(kN, false, 0.2, 5);
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(kN, 1.0, -1.0);
+  solver->analyze(a);
+  ASSERT_TRUE(solver->factorize(a));
+  // New values, the same pattern.
+  SparseMatrix near = a;
+  for (int k = 0; k < near.nonZeros(); ++k) near.valuePtr()[k] *= 1.0 + 0.01 * (k % 5);
+  Eigen::VectorXd x;
+  nodus::solver::KrylovSolve r = solver->solve_on_factor(near, false, b, kTolerance, 20, x);
+  EXPECT_TRUE(r.accepted);
+  EXPECT_GT(r.iterations, 1);  // not the factor's own matrix
+  EXPECT_LE(r.iterations, 20);
+  EXPECT_LT((near * x - b).norm(), 1.01 * kTolerance * b.norm());
+  // Another pattern of the same size: couplings between i and i + 3 added.
+  SparseMatrix other = near;
+  for (int i = 0; i + 3 < kN; ++i) other.coeffRef(i, i + 3) = 0.01;
+  other.makeCompressed();
+  ASSERT_GT(other.nonZeros(), near.nonZeros());
+  r = solver->solve_on_factor(other, true, b, kTolerance, 20, x);
+  EXPECT_TRUE(r.accepted);
+  EXPECT_LT((other * x - b).norm(), 1.01 * kTolerance * b.norm());
+  // Far from the factor's matrix: two iterations do not reach the tolerance.
+  SparseMatrix far = a;
+  for (int k = 0; k < far.nonZeros(); ++k) far.valuePtr()[k] *= 1.0 + 0.5 * (k % 7);
+  r = solver->solve_on_factor(far, true, b, kTolerance, 2, x);
+  EXPECT_FALSE(r.accepted);
+  EXPECT_EQ(r.iterations, 2);
+  // Refactorised (the pattern analysed again, as Newton does after a new one): exact again.
+  solver->analyze(far);
+  ASSERT_TRUE(solver->factorize(far));
+  x = solver->solve(b);
+  EXPECT_LT((far * x - b).norm(), 1e-12 * b.norm());
+  EXPECT_LT((x - reference_solution(far, b)).norm(), 1e-10 * x.norm());
 }
 
 TEST_F(PetscSolver, ReportsASingularMatrixAsAFailedFactorisation) {

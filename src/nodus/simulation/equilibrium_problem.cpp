@@ -102,30 +102,35 @@ bool EquilibriumProblem::rebuild_pattern() {
   // contact elements between the same beam elements as before.
   solver::BlockAdjacency adjacency = solver::block_adjacency(static_cast<int>(offsets.size()) - 1, groups);
   if (assembler_ && assembler_->has_pattern(free_index_, adjacency)) return false;
-  assembler_ = std::make_unique<solver::SparseAssembler>(offsets, free_index_, std::move(adjacency));
-  ++pattern_version_;
-  if (distributed_) split_among_ranks();
+  make_assembler(std::move(adjacency));
   return true;
 }
 
-void EquilibriumProblem::distribute(bool on) {
-  distributed_ = on && parallel::size() > 1;
+void EquilibriumProblem::make_assembler(solver::BlockAdjacency adjacency) {
+  solver::BlockRange rows;  // all
   if (distributed_) {
-    split_among_ranks();
-  } else {
-    rank_blocks_.clear();
-    if (assembler_) assembler_->set_rows({});
+    split_among_ranks(adjacency);
+    rows = rank_blocks_[static_cast<std::size_t>(parallel::rank())];
   }
+  assembler_ = std::make_unique<solver::SparseAssembler>(model_.dofs().offsets(), free_index_,
+                                                         std::move(adjacency), rows);
+  ++pattern_version_;
 }
 
-void EquilibriumProblem::split_among_ranks() {
-  if (!assembler_) return;
+void EquilibriumProblem::distribute(bool on) {
+  const bool was = distributed_;
+  distributed_ = on && parallel::size() > 1;
+  if (!distributed_) rank_blocks_.clear();
+  // The matrix of this rank's rows, or of all of them again.
+  if (assembler_ && (distributed_ || was)) make_assembler(assembler_->adjacency());
+}
+
+void EquilibriumProblem::split_among_ranks(const solver::BlockAdjacency& adjacency) {
   const int ranks = parallel::size();
+  const std::vector<int>& offsets = model_.dofs().offsets();
   // Balanced by the tangent's entries in the blocks' columns (its rows: the pattern is symmetric), which
   // follow the elements and contact elements at the blocks.
-  rank_blocks_ = assembler_->split_columns(ranks);
-  assembler_->set_rows(rank_blocks_[static_cast<std::size_t>(parallel::rank())]);
-  const std::vector<int>& offsets = model_.dofs().offsets();
+  rank_blocks_ = solver::split_blocks(offsets, free_index_, adjacency, ranks);
   const int blocks = static_cast<int>(offsets.size()) - 1;
   rank_dofs_.assign(static_cast<std::size_t>(ranks) + 1, model_.num_dofs());
   rank_rows_.assign(static_cast<std::size_t>(ranks) + 1, size());

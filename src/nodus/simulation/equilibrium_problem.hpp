@@ -134,8 +134,8 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   /// the tangent), and computes those blocks' rows of the residual and the tangent only, summed in element
   /// order as one process would. The ranks then exchange their residual rows and the states of the contact
   /// elements they own, so every rank holds the whole residual, bit for bit as one process computes it, while
-  /// the tangent stays distributed: only a solver that reads each rank's own rows (petsc, local_rows()) can
-  /// factorise it. Without MPI, or on one rank, nothing changes.
+  /// the tangent stays distributed: each rank holds its own rows only, and only a solver that reads them
+  /// (petsc, local_rows()) can factorise it. Without MPI, or on one rank, nothing changes.
   void distribute(bool on);
   bool distributed() const { return distributed_; }
   /// The free rows [first, last) of this rank's blocks when distributed, else {-1, -1}.
@@ -174,8 +174,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   bool distributed_ = false;
   std::vector<solver::BlockRange> rank_blocks_;
   std::vector<int> rank_dofs_, rank_rows_;
-  /// Sets the ranges above from the pattern (a new one balances the ranks anew).
-  void split_among_ranks();
+  /// Sets the ranges above for the pattern of `adjacency` (a new one balances the ranks anew).
+  void split_among_ranks(const solver::BlockAdjacency& adjacency);
+  /// The assembler of the pattern of `adjacency` (this rank's rows when distributed), a new pattern version.
+  void make_assembler(solver::BlockAdjacency adjacency);
   /// After the terms of a distributed evaluation: every rank receives the other ranks' rows of the residual
   /// and the states of the contact elements they own.
   void share_among_ranks();

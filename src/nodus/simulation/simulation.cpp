@@ -336,9 +336,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.newton_iterations = counters_.newton_iterations;
   const bool symmetric = !laws_.friction_normal_coupling && !laws_.linearized_normals;
   const bool petsc = scenario_.solver.linear_solver == scenario::LinearSolverKind::petsc;
-  // On several ranks the petsc solver takes each rank's own rows, so the evaluation is distributed; not with
-  // the kept factor, whose GMRES multiplies by the whole tangent on every rank (docs/parallel.md).
-  problem_->distribute(petsc && !scenario_.solver.reuse_factor);
+  // On several ranks the petsc solver takes each rank's own rows, so the evaluation is distributed, with the
+  // kept factor too: its GMRES runs in PETSc on the distributed matrix (docs/parallel.md).
+  problem_->distribute(petsc);
   auto linear =
       petsc ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options,
                                         [this] { return problem_->local_rows(); })

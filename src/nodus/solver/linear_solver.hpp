@@ -11,6 +11,12 @@
 
 namespace nodus::solver {
 
+/// What a solve on a kept factor (LinearSolver::solve_on_factor) did.
+struct KrylovSolve {
+  bool accepted = false;  ///< |a x - b| <= tolerance |b| was reached
+  int iterations = 0;     ///< Krylov iterations taken
+};
+
 class LinearSolver {
  public:
   virtual ~LinearSolver() = default;
@@ -21,6 +27,13 @@ class LinearSolver {
   /// Solves a x = b with the last factorisation.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
   virtual std::string name() const = 0;
+  /// Solves a x = b by GMRES (restarted after `max_iterations`, so at most that many), preconditioned by the
+  /// last factorisation, which may be of an earlier matrix and pattern of the same size. The result is
+  /// accepted on the true residual. `new_pattern`: the pattern of `a` is not the one handed to this solver
+  /// last (by analyze() or by this call). By default Eigen's GMRES with solve() as the preconditioner on the
+  /// whole matrix; the PETSc solver runs PETSc's GMRES on the ranks' rows instead.
+  virtual KrylovSolve solve_on_factor(const SparseMatrix& a, bool new_pattern, const Eigen::VectorXd& b,
+                                      double tolerance, int max_iterations, Eigen::VectorXd& x);
   /// Whether analyze() reads the values as well as the pattern: then two analyses of one pattern may differ,
   /// and a run that must repeat itself exactly (resumed from a checkpoint) has to analyse at the same points.
   virtual bool analysis_reads_values() const { return true; }

@@ -2,9 +2,11 @@
 
 #include <limits>
 #include <stdexcept>
+#include <tuple>
 #include <vector>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "nodus/parallel/mpi_session.hpp"
 
@@ -74,20 +76,113 @@ class PetscSolver final : public LinearSolver {
     VecDestroy(&whole_);
     VecDestroy(&x_);
     VecDestroy(&b_);
-    MatDestroy(&a_);
-    const PetscInt n = static_cast<PetscInt>(a.rows());
-    PetscInt local = PETSC_DECIDE, global = n;
+    build_operator(a, rows_of(a));
+    check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
+    check(VecScatterCreateToAll(x_, &gather_, &whole_), "VecScatterCreateToAll");
+  }
+
+  bool factorize(const SparseMatrix& a) override {
+    if (a.nonZeros() != pattern_nonzeros_)
+      throw std::logic_error("PetscSolver::factorize: the pattern changed since analyze()");
+    copy_values(a);
+    const OptionsInForce in_force(options_);
+    if (!operators_set_) {
+      check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+      operators_set_ = true;
+    }
+    // A factorisation, not a solve on the kept factor (solve_on_factor).
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    if (on_factor_) {
+      check(KSPSetType(ksp_, KSPPREONLY), "KSPSetType");
+      check(KSPSetPCSide(ksp_, PC_LEFT), "KSPSetPCSide");
+      check(KSPSetNormType(ksp_, KSP_NORM_NONE), "KSPSetNormType");
+      check(PCSetReusePreconditioner(pc, PETSC_FALSE), "PCSetReusePreconditioner");
+      on_factor_ = false;
+    }
+    // The factorisation runs here. A singular matrix is a failed PC, not an error: Newton cuts the step.
+    const PetscErrorCode code = KSPSetUp(ksp_);
+    PCFailedReason reason = PC_NOERROR;
+    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
+    if (code != 0 && reason == PC_NOERROR) check(code, "KSPSetUp (the factorisation)");
+    // After a failed factorisation PETSc's MUMPS interface skips the next ones (it takes the failure for a
+    // failed analysis): the next factorisation starts from a new analysis.
+    if (reason != PC_NOERROR) reset();
+    return reason == PC_NOERROR;
+  }
+
+  Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
+    Eigen::VectorXd x(b.size());
+    const OptionsInForce in_force(options_);
+    // A failed solve gives a vector Newton recognises as failed, as the other solvers do.
+    if (!solve_into(b, x)) x.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return x;
+  }
+
+  std::string name() const override { return symmetric_ ? "petsc_cholesky" : "petsc_lu"; }
+
+  /// PETSc's GMRES on the ranks' rows, preconditioned on the right by the kept factor (so that its residual
+  /// is the true one, |a x - b|, and its test the one of the default solver), at most `max_iterations`
+  /// iterations. The factor stays while the operator changes (PCSetReusePreconditioner). A new pattern with
+  /// the same rows on each rank becomes the operator; one with other rows (a new split among the ranks) would
+  /// not fit the factor's layout and is refused, which makes Newton refactorise.
+  KrylovSolve solve_on_factor(const SparseMatrix& a, bool new_pattern, const Eigen::VectorXd& b,
+                              double tolerance, int max_iterations, Eigen::VectorXd& x) override {
+    if (!operators_set_) return {};
+    const OptionsInForce in_force(options_);
+    if (new_pattern) {
+      const std::pair<PetscInt, PetscInt> rows = rows_of(a);
+      if (rows.first != first_ || rows.second != last_) {
+        spdlog::debug("petsc: the new pattern's rows [{}, {}) are not the factor's [{}, {}) on this rank",
+                      rows.first, rows.second, first_, last_);
+        return {};
+      }
+      build_operator(a, rows);
+      check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
+    }
+    copy_values(a);
+    PC pc = nullptr;
+    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
+    if (!on_factor_) {
+      check(PCSetReusePreconditioner(pc, PETSC_TRUE), "PCSetReusePreconditioner");
+      check(KSPSetType(ksp_, KSPGMRES), "KSPSetType");
+      check(KSPSetPCSide(ksp_, PC_RIGHT), "KSPSetPCSide");
+      check(KSPSetNormType(ksp_, KSP_NORM_UNPRECONDITIONED), "KSPSetNormType");
+      check(KSPSetInitialGuessNonzero(ksp_, PETSC_FALSE), "KSPSetInitialGuessNonzero");
+      on_factor_ = true;
+    }
+    check(KSPGMRESSetRestart(ksp_, max_iterations), "KSPGMRESSetRestart");
+    check(KSPSetTolerances(ksp_, tolerance, 0.0, PETSC_DEFAULT, max_iterations), "KSPSetTolerances");
+    KrylovSolve result;
+    result.accepted = solve_into(b, x);
+    PetscInt iterations = 0;
+    check(KSPGetIterationNumber(ksp_, &iterations), "KSPGetIterationNumber");
+    result.iterations = static_cast<int>(iterations);
+    return result;
+  }
+
+ private:
+  /// This rank's rows [first, last) of `a`: those it assembled (`local_rows`), or PETSc's even split.
+  std::pair<PetscInt, PetscInt> rows_of(const SparseMatrix& a) const {
+    PetscInt local = PETSC_DECIDE, global = static_cast<PetscInt>(a.rows()), last = 0;
     const std::pair<int, int> given = local_rows_ ? local_rows_() : std::pair{-1, -1};
-    if (given.first >= 0) local = given.second - given.first;  // the rows this rank assembled
+    if (given.first >= 0) local = given.second - given.first;
     check(PetscSplitOwnership(PETSC_COMM_WORLD, &local, &global), "PetscSplitOwnership");
-    check(MPI_Scan(&local, &last_, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD) == MPI_SUCCESS ? 0 : 1,
-          "MPI_Scan");
-    first_ = last_ - local;
-    if (given.first >= 0 && (given.first != first_ || given.second != last_))
+    check(MPI_Scan(&local, &last, 1, MPIU_INT, MPI_SUM, PETSC_COMM_WORLD) == MPI_SUCCESS ? 0 : 1, "MPI_Scan");
+    if (given.first >= 0 && (given.first != last - local || given.second != last))
       throw std::logic_error(
           fmt::format("PetscSolver: rows [{}, {}) given for this rank, [{}, {}) follow from "
                       "the ranks' counts",
-                      given.first, given.second, first_, last_));
+                      given.first, given.second, last - local, last));
+    return {last - local, last};
+  }
+
+  /// The operator a_ of the pattern of `a`, this rank's `rows`, values not yet set (the one it replaces is
+  /// released; the KSP keeps its own reference until it is given another).
+  void build_operator(const SparseMatrix& a, std::pair<PetscInt, PetscInt> rows) {
+    MatDestroy(&a_);
+    std::tie(first_, last_) = rows;
+    const PetscInt n = static_cast<PetscInt>(a.rows()), local = last_ - first_;
     // This rank's rows, compressed: the tangent is stored by columns, so each entry of the owned rows is
     // found once here and its place in the value array kept for the factorisations.
     std::vector<PetscInt> counts(static_cast<std::size_t>(local), 0);
@@ -117,13 +212,12 @@ class PetscSolver final : public LinearSolver {
     check(MatMPIAIJSetPreallocationCSR(a_, row_start_.data(), columns_.data(), values_.data()),
           "MatMPIAIJSetPreallocationCSR");
     check(MatSetOption(a_, MAT_NEW_NONZERO_LOCATION_ERR, PETSC_TRUE), "MatSetOption");
-    check(MatCreateVecs(a_, &x_, &b_), "MatCreateVecs");
-    check(VecScatterCreateToAll(x_, &gather_, &whole_), "VecScatterCreateToAll");
   }
 
-  bool factorize(const SparseMatrix& a) override {
+  /// The values of `a` (of the operator's pattern) into the operator.
+  void copy_values(const SparseMatrix& a) {
     if (a.nonZeros() != pattern_nonzeros_)
-      throw std::logic_error("PetscSolver::factorize: the pattern changed since analyze()");
+      throw std::logic_error("PetscSolver: the pattern changed since the operator was built");
     for (std::size_t k = 0; k < entries_.size(); ++k) values_[k] = a.valuePtr()[entries_[k]];
     for (PetscInt r = 0; r < last_ - first_; ++r) {
       const PetscInt row = first_ + r;
@@ -134,52 +228,28 @@ class PetscSolver final : public LinearSolver {
     }
     check(MatAssemblyBegin(a_, MAT_FINAL_ASSEMBLY), "MatAssemblyBegin");
     check(MatAssemblyEnd(a_, MAT_FINAL_ASSEMBLY), "MatAssemblyEnd");
-    const OptionsInForce in_force(options_);
-    if (!operators_set_) {
-      check(KSPSetOperators(ksp_, a_, a_), "KSPSetOperators");
-      operators_set_ = true;
-    }
-    // The factorisation runs here. A singular matrix is a failed PC, not an error: Newton cuts the step.
-    const PetscErrorCode code = KSPSetUp(ksp_);
-    PC pc = nullptr;
-    check(KSPGetPC(ksp_, &pc), "KSPGetPC");
-    PCFailedReason reason = PC_NOERROR;
-    check(PCGetFailedReason(pc, &reason), "PCGetFailedReason");
-    if (code != 0 && reason == PC_NOERROR) check(code, "KSPSetUp (the factorisation)");
-    // After a failed factorisation PETSc's MUMPS interface skips the next ones (it takes the failure for a
-    // failed analysis): the next factorisation starts from a new analysis.
-    if (reason != PC_NOERROR) reset();
-    return reason == PC_NOERROR;
   }
 
-  Eigen::VectorXd solve(const Eigen::VectorXd& b) override {
+  /// KSPSolve of a x = b into `x` on every rank (the same bits on each); false if it failed.
+  bool solve_into(const Eigen::VectorXd& b, Eigen::VectorXd& x) {
     PetscScalar* values = nullptr;
     check(VecGetArray(b_, &values), "VecGetArray");
     for (PetscInt r = 0; r < last_ - first_; ++r) values[r] = b[first_ + r];
     check(VecRestoreArray(b_, &values), "VecRestoreArray");
-    Eigen::VectorXd x(b.size());
-    const OptionsInForce in_force(options_);
     const PetscErrorCode code = KSPSolve(ksp_, b_, x_);
     KSPConvergedReason reason = KSP_CONVERGED_ITERATING;
     check(KSPGetConvergedReason(ksp_, &reason), "KSPGetConvergedReason");
-    // A failed solve gives a vector Newton recognises as failed, as the other solvers do.
-    if (code != 0 || reason < 0) {
-      x.setConstant(std::numeric_limits<double>::quiet_NaN());
-      return x;
-    }
+    if (code != 0 || reason < 0) return false;
     // Every rank receives the whole solution, the same bits on each.
     check(VecScatterBegin(gather_, x_, whole_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterBegin");
     check(VecScatterEnd(gather_, x_, whole_, INSERT_VALUES, SCATTER_FORWARD), "VecScatterEnd");
     const PetscScalar* all = nullptr;
     check(VecGetArrayRead(whole_, &all), "VecGetArrayRead");
+    x.resize(b.size());
     for (Eigen::Index i = 0; i < x.size(); ++i) x[i] = all[i];
     check(VecRestoreArrayRead(whole_, &all), "VecRestoreArrayRead");
-    return x;
+    return true;
   }
-
-  std::string name() const override { return symmetric_ ? "petsc_cholesky" : "petsc_lu"; }
-
- private:
   /// Frees what PETSc holds for this solver (what was created so far).
   void release() {
     if (!parallel::active()) return;  // MPI already stopped at exit: nothing can be freed any more
@@ -207,6 +277,7 @@ class PetscSolver final : public LinearSolver {
   Vec x_ = nullptr, b_ = nullptr, whole_ = nullptr;
   VecScatter gather_ = nullptr;
   bool operators_set_ = false;
+  bool on_factor_ = false;  // the KSP is set for solves on the kept factor (GMRES), not for a factorisation
   PetscInt first_ = 0, last_ = 0;        // this rank's rows [first_, last_)
   std::vector<PetscInt> row_start_;      // compressed rows of the owned block
   std::vector<PetscInt> columns_;        // their column indices

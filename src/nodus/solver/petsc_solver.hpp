@@ -9,7 +9,10 @@
 /// Options: KSPPREONLY with PCCHOLESKY (a symmetric tangent: MUMPS's LDL^T with pivoting) or PCLU, MUMPS with
 /// its usual symmetric ordering (ICNTL(12) = 1), then the scenario's solver.petsc_options, then the command
 /// line's `-ksp_*`, `-pc_*`, `-mat_*`, each winning over the ones before; they live in the solver's own
-/// options database. Built only with PETSc; make_petsc_solver throws otherwise.
+/// options database. With a kept factor (solver.reuse_factor, LinearSolver::solve_on_factor) the solves
+/// between factorisations are PETSc's GMRES preconditioned by it, on the same distributed matrix; the KSP's
+/// type is then nodus's (a `-ksp_type` applies until the first such solve). Built only with PETSc;
+/// make_petsc_solver throws otherwise.
 
 #include <functional>
 #include <memory>

@@ -20,7 +20,50 @@ int num_blocks_of(const std::vector<int>& block_offsets) {
   return block_offsets.empty() ? 0 : static_cast<int>(block_offsets.size()) - 1;
 }
 
+/// `blocks` blocks split into `parts` consecutive ranges of nearly equal weights, `prefix[b]` the summed
+/// weight of blocks [0, b).
+std::vector<BlockRange> balanced_split(const std::vector<long long>& prefix, int parts) {
+  const int blocks = static_cast<int>(prefix.size()) - 1;
+  std::vector<BlockRange> ranges = even_split(blocks, parts);
+  const auto n = static_cast<long long>(ranges.size());
+  for (long long p = 1; p < n; ++p) {
+    const long long target = prefix.back() * p / n;
+    const auto at = std::lower_bound(prefix.begin(), prefix.end(), target);
+    const int first = static_cast<int>(at - prefix.begin());
+    ranges[static_cast<std::size_t>(p)].first =
+        std::max(first, ranges[static_cast<std::size_t>(p) - 1].first);
+    ranges[static_cast<std::size_t>(p) - 1].last = ranges[static_cast<std::size_t>(p)].first;
+  }
+  return ranges;
+}
+
+/// The free unknowns of block `b`.
+int free_in_block(const std::vector<int>& offsets, const std::vector<int>& free_index, int b) {
+  int count = 0;
+  for (int dof = offsets[static_cast<std::size_t>(b)]; dof < offsets[static_cast<std::size_t>(b) + 1]; ++dof)
+    count += free_index[static_cast<std::size_t>(dof)] >= 0 ? 1 : 0;
+  return count;
+}
+
 }  // namespace
+
+std::vector<BlockRange> split_blocks(const std::vector<int>& block_offsets,
+                                     const std::vector<int>& free_index, const BlockAdjacency& adjacency,
+                                     int parts) {
+  const int blocks = num_blocks_of(block_offsets);
+  std::vector<int> free(static_cast<std::size_t>(blocks));
+  for (int b = 0; b < blocks; ++b)
+    free[static_cast<std::size_t>(b)] = free_in_block(block_offsets, free_index, b);
+  std::vector<long long> prefix(static_cast<std::size_t>(blocks) + 1, 0);
+  for (int b = 0; b < blocks; ++b) {
+    long long rows = 0;
+    for (int other : adjacency.neighbours.at(static_cast<std::size_t>(b)))
+      rows += free[static_cast<std::size_t>(other)];
+    prefix[static_cast<std::size_t>(b) + 1] =
+        prefix[static_cast<std::size_t>(b)] + 1 + rows * free[static_cast<std::size_t>(b)];
+  }
+  return balanced_split(prefix, parts);
+}
 
 BlockAdjacency block_adjacency(int num_blocks, const std::vector<std::vector<int>>& groups) {
   BlockAdjacency adjacency{std::vector<std::vector<int>>(static_cast<std::size_t>(num_blocks))};
@@ -45,10 +88,11 @@ SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int
                       block_adjacency(num_blocks_of(block_offsets), groups)) {}
 
 SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int> free_index,
-                                 BlockAdjacency adjacency)
+                                 BlockAdjacency adjacency, BlockRange rows)
     : offsets_(std::move(block_offsets)),
       free_index_(std::move(free_index)),
-      adjacency_(std::move(adjacency)) {
+      adjacency_(std::move(adjacency)),
+      rows_(rows) {
   if (offsets_.empty() || offsets_.front() != 0 || offsets_.back() != static_cast<int>(free_index_.size()) ||
       !std::is_sorted(offsets_.begin(), offsets_.end()))
     throw std::invalid_argument("SparseAssembler: block offsets do not cover the unknowns in order");
@@ -67,12 +111,14 @@ SparseAssembler::SparseAssembler(std::vector<int> block_offsets, std::vector<int
     for (int c = offsets_[static_cast<std::size_t>(block)]; c < offsets_[static_cast<std::size_t>(block) + 1];
          ++c) {
       if (free_index_[static_cast<std::size_t>(c)] < 0) continue;
-      for (int other : neighbours[static_cast<std::size_t>(block)])
+      for (int other : neighbours[static_cast<std::size_t>(block)]) {
+        if (!rows_.contains(other)) continue;
         for (int r = offsets_[static_cast<std::size_t>(other)];
              r < offsets_[static_cast<std::size_t>(other) + 1]; ++r) {
           const int row = free_index_[static_cast<std::size_t>(r)];
           if (row >= 0) inner.push_back(row);
         }
+      }
       outer[static_cast<std::size_t>(++col)] = static_cast<int>(inner.size());
     }
   }
@@ -95,7 +141,8 @@ int SparseAssembler::value_offset(int row, int col) const {
   return static_cast<int>(it - matrix_.innerIndexPtr());
 }
 
-std::vector<BlockRange> SparseAssembler::split_columns(int parts) const {
+const std::vector<BlockRange>& SparseAssembler::split_columns(int parts) const {
+  if (static_cast<int>(columns_split_.size()) == parts) return columns_split_;
   const int blocks = static_cast<int>(offsets_.size()) - 1;
   // The entries in the columns of blocks [0, b), plus one a block (a block with no free unknown still costs
   // its test).
@@ -110,17 +157,8 @@ std::vector<BlockRange> SparseAssembler::split_columns(int parts) const {
     }
     entries[static_cast<std::size_t>(b) + 1] = entries[static_cast<std::size_t>(b)] + in_block;
   }
-  std::vector<BlockRange> ranges = even_split(blocks, parts);
-  const auto n = static_cast<long long>(ranges.size());
-  for (long long p = 1; p < n; ++p) {
-    const long long target = entries.back() * p / n;
-    const auto at = std::lower_bound(entries.begin(), entries.end(), target);
-    const int first = static_cast<int>(at - entries.begin());
-    ranges[static_cast<std::size_t>(p)].first =
-        std::max(first, ranges[static_cast<std::size_t>(p) - 1].first);
-    ranges[static_cast<std::size_t>(p) - 1].last = ranges[static_cast<std::size_t>(p)].first;
-  }
-  return ranges;
+  columns_split_ = balanced_split(entries, parts);
+  return columns_split_;
 }
 
 void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Eigen::MatrixXd>& k,
