@@ -146,7 +146,8 @@ def clamp_motions(offsets, keyframes=False):
     return motions
 
 
-def knot_scenario(elements=300, force=0.5, pin_release=False, tighten_line_search=False, section_pairing="plane"):
+def knot_scenario(elements=300, force=0.5, pin_release=False, tighten_line_search=False, section_pairing="plane",
+                  lift=0.0):
     """The knot's scenario as data (the keys of a scenario file, docs/scenario.md).
 
     tighten_line_search: `pull` and `settle` take Newton's line search, as the releases do. Without it a pull of
@@ -154,14 +155,20 @@ def knot_scenario(elements=300, force=0.5, pin_release=False, tighten_line_searc
     slip direction, and the steps fall to 1e-5 of the load time); the force series takes it for every force
     (docs/knot.md). The flagship keeps the full Newton step: it is cheaper there and its tables are measured so.
     section_pairing: contact.section_pairing, "plane" (the paper's, the flagship's) or "bisector" (which follows
-    a strand wrapping round another in a knot pulled at 2 N; docs/contact.md)."""
+    a strand wrapping round another in a knot pulled at 2 N; docs/contact.md).
+    lift: end B's height [mm] at its first waypoint of `loop` (0.3 s), instead of 0 (it rises to 0.1 mm by
+    0.6 s anyway). The straight rod, compressed by its ends, buckles in the first step; in the plane of the ends'
+    motion the whole program decides the rod's side, out of it nothing does but round-off, so two linear
+    solvers (or MPI runs) can take the loop out of the plane to opposite sides. 0.05 mm decides it: on 60
+    elements KLU, UMFPACK, MUMPS and PETSc on 1 to 3 ranks then take the same steps (tests/mpi,
+    docs/parallel.md). The flagship keeps 0: its figures were measured so."""
     a = End("end_a", [-10, 0, 0])
     b = End("end_b", [10, 0, 0])
     p = 3.9  # the ends of the loop sit at (-p, -p) and (p, -p)
     diagonal = np.array([1.0, 1.0, 0.0]) / np.sqrt(2)
     feed = 3.0  # end A pushes this much rod towards the knot while end B threads the loop
     loop = {"end_a": a.move([(1.0, [-p, -p, 0], [1, 1, 0])]),
-            "end_b": b.move([(0.3, [p + 2, 1, 0], [0, 1, 0]), (0.6, [0, 3.5, 0.1], [-1, 0, 0]),
+            "end_b": b.move([(0.3, [p + 2, 1, lift], [0, 1, 0]), (0.6, [0, 3.5, 0.1], [-1, 0, 0]),
                              (0.8, [-1.5, 1, 0.25], [0, -1, 0]), (1.0, [p, -p, 0.35], [1, -1, 0])])}
     thread = {"end_a": a.move([(1.0, np.array([-p, -p, 0]) + feed * diagonal, [1, 1, 0])]),
               "end_b": b.move([(0.15, [4.7, -4.5, -0.3], [0.3, -0.3, -1]), (0.3, [4.2, -3.6, -0.8], [-0.6, 1, -0.2]),
