@@ -175,6 +175,7 @@ TEST(ScenarioKeys, LibraryDefaultsEqualTheScenarioDefaults) {
   const SolverSettings solver;
   const nodus::solver::NewtonSettings newton;
   EXPECT_EQ(newton.max_iterations, solver.max_newton_iterations);
+  EXPECT_EQ(newton.stagnation_iterations, solver.stagnation_iterations);
   EXPECT_EQ(newton.line_search, solver.line_search);
   EXPECT_FALSE(newton.line_search);  // the scenario default (docs/model.md)
   const nodus::solver::StepControl stepping;

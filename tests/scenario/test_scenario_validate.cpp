@@ -54,6 +54,7 @@ stages:
 solver:
   linear_solver: umfpack
   max_newton_iterations: 25
+  stagnation_iterations: 0
   residual_tolerance: 1e-8
   increment_tolerance: 1e-6
   max_cutbacks: 12
@@ -168,8 +169,8 @@ TEST(ScenarioValidate, EveryNumberKeyOutOfRangeGivesTheReadersMessage) {
   checked += check_keys<OutputSettings>("output:", [](Scenario& s) -> OutputSettings& { return s.output; });
   checked +=
       check_keys<ContactSettings>("contact:", [](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 9 + 4 + 14.
-  EXPECT_EQ(checked, 38);
+  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 10 + 4 + 14.
+  EXPECT_EQ(checked, 39);
 }
 
 TEST(ScenarioValidate, ChecksAcrossKeysGiveTheReadersMessage) {
@@ -341,9 +342,9 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
       [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
   checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 5, Keyframe 1, SolverSettings 13,
+  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 5, Keyframe 1, SolverSettings 14,
   // ContactSettings 21.
-  EXPECT_EQ(checked, 48);
+  EXPECT_EQ(checked, 49);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();

@@ -468,6 +468,8 @@ enum class LinearSolverKind { cholmod, umfpack, mumps, klu, petsc };
 struct SolverSettings {
   LinearSolverKind linear_solver = LinearSolverKind::cholmod;
   int max_newton_iterations = ::nodus::solver::NewtonSettings{}.max_iterations;  ///< per step attempt, >= 1
+  /// Iterations without a new smallest residual after which a step attempt is given up, >= 0 (0: never).
+  int stagnation_iterations = ::nodus::solver::NewtonSettings{}.stagnation_iterations;
   double residual_tolerance = 1e-8;   ///< |R| <= tol * force scale [-], > 0
   double increment_tolerance = 1e-6;  ///< |du|_inf <= tol * length scale [-], > 0
   /// Successive halvings of a step before giving up, >= 0.
@@ -505,6 +507,10 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
           "docs/parallel.md)"),
       K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
                ranges::at_least_one, "iterations per step attempt"),
+      K::whole("solver.stagnation_iterations", &SolverSettings::stagnation_iterations, ">= 0",
+               ranges::non_negative,
+               "a step attempt is given up (and the step cut back) after this many iterations without a "
+               "residual smaller than the smallest so far; 0: never (docs/performance.md)"),
       K::real("solver.residual_tolerance", &SolverSettings::residual_tolerance, "", "> 0", ranges::positive,
               "converged when the residual norm <= tolerance times the force scale"),
       K::real("solver.increment_tolerance", &SolverSettings::increment_tolerance, "", "> 0", ranges::positive,
@@ -527,7 +533,8 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
           "additive (g + dg) (docs/model.md)"),
       K::flag("solver.reuse_factor", &SolverSettings::reuse_factor,
               "keep the tangent's factorisation across Newton iterations and steps, and solve with GMRES "
-              "preconditioned by it while it serves (docs/performance.md)"),
+              "preconditioned by it while it serves (docs/performance.md); with `linear_solver: petsc`, "
+              "PETSc's GMRES on the distributed matrix (docs/parallel.md)"),
       K::whole("solver.krylov_iterations", &SolverSettings::krylov_iterations, ">= 1", ranges::at_least_one,
                "GMRES iterations allowed on a kept factorisation before the tangent is factorised again"),
       K::whole("solver.gauss_points", &SolverSettings::gauss_points, "in 1..5", ranges::one_to_five,

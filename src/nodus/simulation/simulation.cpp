@@ -345,6 +345,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             : solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver, symmetric));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
+  newton_settings.stagnation_iterations = scenario_.solver.stagnation_iterations;
   newton_settings.line_search = scenario_.solver.line_search;
   newton_settings.reuse_factor = scenario_.solver.reuse_factor;
   newton_settings.krylov_iterations = scenario_.solver.krylov_iterations;

@@ -74,6 +74,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     return report;
   }
   double increment = INFINITY;
+  // The smallest |R| since the problem last changed (a fixed-point update), and its iteration.
+  double best = INFINITY;
+  int best_at = 0;
   for (int it = 1; it <= settings_.max_iterations; ++it) {
     ++timings_.iterations;
     Eigen::VectorXd du;
@@ -151,6 +154,18 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
         (norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance()) ||
         norm <= loose_residual;
     const bool changed = update && update({it, norm, converged});
+    if (changed) {
+      best = INFINITY;
+      best_at = it;
+    } else if (norm < best) {
+      best = norm;
+      best_at = it;
+    } else if (settings_.stagnation_iterations > 0 && it - best_at >= settings_.stagnation_iterations) {
+      report.failure = fmt::format(
+          "no progress in {} iterations (|R| = {:.3e}, smallest {:.3e} at iteration {}; tolerance {:.3e})",
+          it - best_at, norm, best, best_at, problem.residual_tolerance());
+      return report;
+    }
     if (converged && !changed) {
       report.converged = true;
       return report;

@@ -28,6 +28,10 @@ struct NewtonSettings {
   /// An increment from GMRES is accepted when |K du + R| <= krylov_tolerance |R|. At 1e-6, Newton took the
   /// same iterations as with exact solves on the 100-element knot (docs/performance.md).
   double krylov_tolerance = 1e-6;
+  /// > 0: a solve stops as failed once this many iterations have passed without a residual smaller than the
+  /// smallest since the problem last changed (a fixed-point update): a wandering Newton is given up before
+  /// max_iterations, and the step is cut back sooner. 0: never (docs/performance.md, "Stagnating Newton").
+  int stagnation_iterations = 0;
 };
 
 struct NewtonReport {
