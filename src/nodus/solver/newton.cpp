@@ -154,6 +154,10 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
         (norm <= problem.residual_tolerance() && increment <= problem.increment_tolerance()) ||
         norm <= loose_residual;
     const bool changed = update && update({it, norm, converged});
+    if (converged && !changed) {
+      report.converged = true;
+      return report;
+    }
     if (changed) {
       best = INFINITY;
       best_at = it;
@@ -164,10 +168,6 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
       report.failure = fmt::format(
           "no progress in {} iterations (|R| = {:.3e}, smallest {:.3e} at iteration {}; tolerance {:.3e})",
           it - best_at, norm, best, best_at, problem.residual_tolerance());
-      return report;
-    }
-    if (converged && !changed) {
-      report.converged = true;
       return report;
     }
     if (settings_.cancel && settings_.cancel()) {

@@ -100,9 +100,9 @@ class NewtonSolver {
   NewtonSettings settings_;
   bool analyzed_ = false;
   std::uint64_t analyzed_version_ = 0;  ///< the problem's pattern_version() at the analysis
-  std::uint64_t handed_version_ =
-      0;                   ///< the pattern version last handed to the linear solver (analysis or GMRES)
-  bool factored_ = false;  ///< the linear solver holds a factorisation (perhaps of an earlier pattern)
+  /// The pattern version last handed to the linear solver (by an analysis or a solve on the kept factor).
+  std::uint64_t handed_version_ = 0;
+  bool factored_ = false;         ///< the linear solver holds a factorisation (perhaps of an earlier pattern)
   Eigen::Index factor_size_ = 0;  ///< the number of unknowns of that factorisation
   NewtonTimings timings_;
 };

@@ -132,9 +132,15 @@ class PetscSolver final : public LinearSolver {
     const OptionsInForce in_force(options_);
     if (new_pattern) {
       const std::pair<PetscInt, PetscInt> rows = rows_of(a);
-      if (rows.first != first_ || rows.second != last_) {
-        spdlog::debug("petsc: the new pattern's rows [{}, {}) are not the factor's [{}, {}) on this rank",
-                      rows.first, rows.second, first_, last_);
+      // Decided by all ranks together: one whose rows stayed must not set the operator alone.
+      int same = rows.first == first_ && rows.second == last_ ? 1 : 0;
+      check(MPI_Allreduce(MPI_IN_PLACE, &same, 1, MPI_INT, MPI_MIN, PETSC_COMM_WORLD) == MPI_SUCCESS ? 0 : 1,
+            "MPI_Allreduce");
+      if (same == 0) {
+        spdlog::debug(
+            "petsc: the new pattern's rows [{}, {}) are not the factor's [{}, {}) on this rank "
+            "(or on another)",
+            rows.first, rows.second, first_, last_);
         return {};
       }
       build_operator(a, rows);
@@ -250,6 +256,7 @@ class PetscSolver final : public LinearSolver {
     check(VecRestoreArrayRead(whole_, &all), "VecRestoreArrayRead");
     return true;
   }
+
   /// Frees what PETSc holds for this solver (what was created so far).
   void release() {
     if (!parallel::active()) return;  // MPI already stopped at exit: nothing can be freed any more
