@@ -63,6 +63,24 @@ TEST_P(LinearSolvers, RefactoriseNewValuesOnOneAnalysis) {
   }
 }
 
+// Every unknown coupled to every other, as in a model of one beam element (18 free unknowns): MUMPS's PORD
+// ordering finds no separator there and ended the process ("no valid number of stages in multisector"), also
+// through CHOLMOD's fallback for indefinite tangents.
+TEST_P(LinearSolvers, SolveAMatrixWithoutZeros) {
+  for (double shift : {0.0, -19.5}) {  // positive definite, then indefinite
+    Eigen::MatrixXd dense = Eigen::MatrixXd::Constant(18, 18, -0.5);
+    dense.diagonal().array() = 10.0 + shift;
+    const SparseMatrix a = dense.sparseView();
+    const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(18, -1.0, 2.0);
+    const Eigen::VectorXd reference = dense.fullPivLu().solve(b);
+    auto solver = make_linear_solver(GetParam());
+    solver->analyze(a);
+    ASSERT_TRUE(solver->factorize(a)) << solver->name() << " shift " << shift;
+    EXPECT_LT((solver->solve(b) - reference).norm(), 1e-10 * reference.norm())
+        << solver->name() << " " << shift;
+  }
+}
+
 INSTANTIATE_TEST_SUITE_P(All, LinearSolvers,
                          ::testing::Values(LinearSolverKind::cholmod, LinearSolverKind::cholmod_ldlt,
                                            LinearSolverKind::umfpack, LinearSolverKind::mumps_ldlt,

@@ -78,10 +78,10 @@ class MumpsSolver final : public LinearSolver {
     icntl(2) = -1;
     icntl(3) = -1;
     icntl(4) = 0;
-    // PORD: of the orderings of Debian's build (AMD, AMF, QAMD, PORD, SCOTCH; no METIS), the fastest
-    // factorisations of the contact tangents of twisted bundles: at 75 fibres LDL^T 11.4 s against 17.8 s
-    // with SCOTCH and 23.3 s with AMD (docs/performance.md). On a lone rod it is 20 % slower than SCOTCH.
-    icntl(7) = 4;
+    // PORD (set in analyze()): of the orderings of Debian's build (AMD, AMF, QAMD, PORD, SCOTCH; no METIS),
+    // the fastest factorisations of the contact tangents of twisted bundles: at 75 fibres LDL^T 11.4 s
+    // against 17.8 s with SCOTCH and 23.3 s with AMD (docs/performance.md). On a lone rod it is 20 % slower
+    // than SCOTCH.
     icntl(10) = 0;  // no iterative refinement: Newton refines anyway (as for UMFPACK)
     // The usual symmetric ordering, not the compressed one MUMPS picks by default for LDL^T: that one's
     // analysis took 15 s at 75 fibres (against 1.1 s) for a slower factorisation.
@@ -116,6 +116,10 @@ class MumpsSolver final : public LinearSolver {
     }
     values_.assign(entries_.size(), 0.0);
     pattern_nonzeros_ = a.nonZeros();
+    // PORD finds no separator in a matrix whose unknowns are all coupled (one beam element, 18 free unknowns:
+    // "no valid number of stages in multisector", and it ends the process); AMD orders small matrices, whose
+    // ordering costs nothing. No clique of 128 unknowns arises from elements of 27 (contact couples two).
+    icntl(7) = a.rows() < kSmallestForPord ? 0 : 4;
     id_.n = static_cast<MUMPS_INT>(a.rows());
     id_.nnz = static_cast<MUMPS_INT8>(entries_.size());
     id_.irn = rows_.data();
@@ -163,6 +167,7 @@ class MumpsSolver final : public LinearSolver {
 #ifndef NODUS_HAVE_PETSC
   static constexpr MUMPS_INT kUseCommWorld = -987654;  // the sequential library's only communicator
 #endif
+  static constexpr Eigen::Index kSmallestForPord = 128;  // smaller matrices are ordered by AMD (analyze())
 
   MUMPS_INT& icntl(int i) {
     return id_.icntl[i - 1];
