@@ -342,9 +342,9 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
       [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
   checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 5, Keyframe 1, SolverSettings 14,
+  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 6, Keyframe 1, SolverSettings 14,
   // ContactSettings 21.
-  EXPECT_EQ(checked, 49);
+  EXPECT_EQ(checked, 50);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();

@@ -150,6 +150,57 @@ TEST(Checkpoint, ResumedRunEqualsUninterrupted) {
   }
 }
 
+/// Records the linear solver each stage runs with.
+class StageSolvers : public StepObserver {
+ public:
+  std::vector<std::string> names;
+  void on_stage(const Simulation& sim, int /*stage*/) override { names.push_back(sim.linear_solver_name()); }
+};
+
+// A stage's own linear solver (stages[].linear_solver): the run takes it from that stage on and returns to
+// the solver section's where a stage has none; it reaches the equilibrium of the run with one solver to
+// round-off, and a run stopped after any step and resumed repeats the uninterrupted one exactly (each change
+// of solver starts a new one, as a resumed run does).
+TEST(Checkpoint, AStageTakesItsOwnLinearSolverAndAResumedRunRepeatsIt) {
+  std::string text = kScenario;
+  const auto insert_after = [&text](const std::string& line, const std::string& added) {
+    const std::size_t at = text.find(line);
+    ASSERT_NE(at, std::string::npos) << line;
+    text.insert(at + line.size(), added);
+  };
+  insert_after("  - name: drag\n    steps: 3\n", "    linear_solver: klu\n");
+  insert_after("  - name: let_go\n    steps: 3\n", "    linear_solver: mumps\n");
+  const scenario::Scenario s = scenario::parse_scenario(text, "stage_solvers.yaml");
+  const scenario::Scenario one = scenario::parse_scenario(kScenario, "resume.yaml");
+
+  Simulation single(one);
+  ASSERT_TRUE(single.run({}).converged);
+  Simulation reference(s);
+  Recorder all;
+  StageSolvers solvers;
+  const RunSummary whole = reference.run({&all, &solvers});
+  ASSERT_TRUE(whole.converged) << whole.failure;
+  EXPECT_EQ(solvers.names, (std::vector<std::string>{"cholmod", "klu", "mumps_ldlt"}));
+  ASSERT_EQ(static_cast<int>(all.records.size()), kSteps);
+  EXPECT_LT((reference.state() - single.state()).cwiseAbs().maxCoeff(), 1e-10);
+
+  for (int k = 1; k < kSteps; ++k) {
+    SCOPED_TRACE("stopped after step " + std::to_string(k));
+    Simulation first(s);
+    first.run({}, {k});
+    const std::string bytes = nodus::persistence::encode_checkpoint(s, first.snapshot());
+    Simulation second(s);
+    second.restore(nodus::persistence::decode_checkpoint(bytes, s, "memory"), StartKind::resumed);
+    Recorder after;
+    const RunSummary rest = second.run({&after});
+    ASSERT_TRUE(rest.converged) << rest.failure;
+    EXPECT_EQ(rest.newton_iterations, whole.newton_iterations);
+    for (std::size_t i = 0; i < after.records.size(); ++i)
+      expect_same(after.records[i], all.records[static_cast<std::size_t>(k) + i]);
+    EXPECT_EQ((second.state() - reference.state()).cwiseAbs().maxCoeff(), 0.0);
+  }
+}
+
 // The stepping of the Python module: a run stopped by RunOptions::stop_when or cancelled by
 // RunOptions::cancel (Ctrl-C) in the middle of a Newton solve keeps its last converged state, and further
 // calls of run() on the same Simulation end where one uninterrupted run ends.

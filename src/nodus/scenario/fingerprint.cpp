@@ -42,9 +42,9 @@ class Canonical {
   /// Every declared scalar key of `owner`; `prefix` replaces the pattern prefix `pattern`.
   template <class Owner>
   void keys(const Owner& owner, std::string_view pattern, std::string_view prefix,
-            std::string_view skipped = {}) {
+            std::initializer_list<std::string_view> skipped = {}) {
     for (const Key<Owner>& key : Owner::keys()) {
-      if (!key.scalar() || key.path == skipped) continue;
+      if (!key.scalar() || std::find(skipped.begin(), skipped.end(), key.path) != skipped.end()) continue;
       line(std::string(prefix) + std::string(key.path.substr(pattern.size())), value_text(key, owner, true));
     }
   }
@@ -54,10 +54,12 @@ class Canonical {
       const StageSpec& stage = stages[k];
       const std::string at = fmt::format("stages[{}]", k);
       line(at + ".name", stage.name);
-      // A stage's own line search adds a line only where it has one: the text of a scenario without is what
-      // it was before the key existed, so that its checkpoints stay valid.
+      // A stage's own line search or linear solver adds a line only where it has one: the text of a scenario
+      // without is what it was before the keys existed, so that its checkpoints stay valid.
       keys(stage, "stages[]", at,
-           stage.line_search == StageSwitch::solver ? std::string_view("stages[].line_search") : "");
+           {stage.line_search == StageSwitch::solver ? std::string_view("stages[].line_search") : "",
+            stage.linear_solver == StageLinearSolver::solver ? std::string_view("stages[].linear_solver")
+                                                             : ""});
       line(at + ".activate", list(stage.activate));
       line(at + ".release", list(stage.release));
       line(at + ".contact_off", list(stage.contact_off));

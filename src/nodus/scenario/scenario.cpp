@@ -14,6 +14,25 @@ namespace nodus::scenario {
 
 namespace {
 
+/// Each stage's own linear solver (stages[].linear_solver, also in the branches) against the scenario's.
+void check_stage_solvers(const Reader& reader, const MapView& top, const Scenario& s) {
+  const auto check = [&](const Field& list, const std::vector<StageSpec>& stages) {
+    const std::vector<Field> items = reader.list(list, true);
+    for (std::size_t k = 0; k < stages.size() && k < items.size(); ++k) {
+      const std::string_view expected = stage_solver_expected(stages[k], s);
+      if (!expected.empty()) reader.fail(*MapView(reader, items[k]).get("linear_solver"), expected);
+    }
+  };
+  check(top.require("stages"), s.stages);
+  const auto branches = top.get("branches");
+  if (!branches) return;
+  const std::vector<Field> items = reader.list(*branches, true);
+  for (std::size_t b = 0; b < s.branches.size() && b < items.size(); ++b) {
+    const Field stages = MapView(reader, items[b]).require("stages");
+    check(Field{stages.node, stages.path, "stages", stages.line}, s.branches[b].stages);  // as read_branches
+  }
+}
+
 Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::string& path) {
   if (!root.IsMap()) {
     std::string keys;
@@ -75,6 +94,7 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       scenario.conditions[c].moment_axis = moment_axes.axis(static_cast<int>(c));
     }
   }
+  check_stage_solvers(reader, top, scenario);
   // Everything read has been checked with its line; this checks the same again, as for a scenario built in
   // code, so that validate() accepts whatever the reader accepts.
   validate(scenario);

@@ -394,6 +394,10 @@ inline std::span<const Key<LoadTarget>> LoadTarget::keys() {
 /// A stage's choice of a solver setting: the `solver` section's, or its own.
 enum class StageSwitch { solver, on, off };
 
+/// A stage's linear solver: solver.linear_solver (solver), or one of its serial choices (LinearSolverKind
+/// in the same order, shifted by one).
+enum class StageLinearSolver { solver, cholmod, umfpack, mumps, klu };
+
 /// One stage of the loading program.
 struct StageSpec {
   std::string name;
@@ -411,6 +415,8 @@ struct StageSpec {
   double stabilization_end = 0.0;
   /// Newton's line search in this stage: solver.line_search (solver), or on or off.
   StageSwitch line_search = StageSwitch::solver;
+  /// The linear solver of this stage (stage_linear_solver()).
+  StageLinearSolver linear_solver = StageLinearSolver::solver;
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<StageSpec>> keys();
@@ -442,6 +448,13 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
           [](StageSpec& s, int i) { s.line_search = static_cast<StageSwitch>(i); },
           "damp the Newton updates of this stage by a line search (solver.line_search); solver: as "
           "solver.line_search. The knot's releases take it, to come to rest (docs/knot.md)"),
+      K::choice(
+          "stages[].linear_solver", "solver | cholmod | umfpack | mumps | klu",
+          [](const StageSpec& s) { return static_cast<int>(s.linear_solver); },
+          [](StageSpec& s, int i) { s.linear_solver = static_cast<StageLinearSolver>(i); },
+          "the sparse direct solver of this stage (as solver.linear_solver); solver: solver.linear_solver. "
+          "Not with solver.linear_solver: petsc. KLU is the faster on a twisted 3x1 yarn, MUMPS where its "
+          "knot forms (docs/performance.md)"),
       K::doc("stages[].activate", KeyType::list, "", "[]", "of condition names",
              "conditions switched on at the start of the stage"),
       K::doc("stages[].release", KeyType::list, "", "[]", "of condition names, none also in activate",
@@ -552,6 +565,12 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
              "-mat_mumps_icntl_14 50, ...); the command line's win (docs/parallel.md)"),
   };
   return keys;
+}
+
+/// The linear solver that `stage` runs with: its own, or solver.linear_solver.
+inline LinearSolverKind stage_linear_solver(const StageSpec& stage, const SolverSettings& solver) {
+  if (stage.linear_solver == StageLinearSolver::solver) return solver.linear_solver;
+  return static_cast<LinearSolverKind>(static_cast<int>(stage.linear_solver) - 1);
 }
 
 struct OutputSettings {

@@ -56,6 +56,27 @@ constexpr std::string_view kLinearizedNormalsExpected =
     "nested or inside_newton with solver.linear_solver: cholmod (the linearized normals' tangent is not "
     "symmetric and needs LU: set solver.linear_solver: umfpack, mumps or klu)";
 
+// A stage's own linear solver (stages[].linear_solver): none with petsc, whose ranks share every stage's
+// rows; not cholmod where the tangent is not symmetric.
+constexpr std::string_view kStageSolverWithPetscExpected =
+    "solver (with solver.linear_solver: petsc every stage runs on PETSc, which shares the rows among the MPI "
+    "ranks)";
+
+constexpr std::string_view kStageCholmodExpected =
+    "solver, umfpack, mumps or klu (the tangent is not symmetric with contact.friction_tangent: varying or "
+    "contact.normal_updates: linearized, and cholmod reads one triangle)";
+
+/// What a stage's own linear solver must be, if anything (the reader's and validate()'s checks): empty if
+/// `stage`'s choice goes with the scenario's solver and contact settings.
+inline std::string_view stage_solver_expected(const StageSpec& stage, const Scenario& s) {
+  if (stage.linear_solver == StageLinearSolver::solver) return {};
+  if (s.solver.linear_solver == LinearSolverKind::petsc) return kStageSolverWithPetscExpected;
+  const bool unsymmetric = s.contact.friction_tangent == FrictionTangent::varying ||
+                           s.contact.normal_updates == NormalUpdates::linearized;
+  if (unsymmetric && stage.linear_solver == StageLinearSolver::cholmod) return kStageCholmodExpected;
+  return {};
+}
+
 /// The word of the file for a condition type: clamp, motion, rigid, load.
 std::string_view type_name(ConditionType type);
 

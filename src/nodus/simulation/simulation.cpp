@@ -340,10 +340,12 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   // On several ranks the petsc solver takes each rank's own rows, so the evaluation is distributed, with the
   // kept factor too: its GMRES runs in PETSc on the distributed matrix (docs/parallel.md).
   problem_->distribute(petsc);
-  auto linear =
-      petsc ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options,
-                                        [this] { return problem_->local_rows(); })
-            : solver::make_linear_solver(linear_solver_kind(scenario_.solver.linear_solver, symmetric));
+  // A stage may take its own serial solver (stages[].linear_solver): a new one at each change, as a run
+  // resumed in that stage starts with, so that the resumed run repeats the one never stopped.
+  scenario::LinearSolverKind linear_kind = scenario_.solver.linear_solver;
+  auto linear = petsc ? solver::make_petsc_solver(symmetric, scenario_.solver.petsc_options,
+                                                  [this] { return problem_->local_rows(); })
+                      : solver::make_linear_solver(linear_solver_kind(linear_kind, symmetric));
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.stagnation_iterations = scenario_.solver.stagnation_iterations;
@@ -394,6 +396,14 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     const scenario::StageSpec& stage = scenario_.stages[static_cast<std::size_t>(s)];
     const solver::StepControl control{stage.duration / stage.steps, scenario_.solver.max_cutbacks,
                                       scenario_.solver.easy_iterations};
+    if (const scenario::LinearSolverKind kind = scenario::stage_linear_solver(stage, scenario_.solver);
+        !petsc && kind != linear_kind) {
+      auto next = solver::make_linear_solver(linear_solver_kind(kind, symmetric));
+      newton.set_linear_solver(*next);
+      linear = std::move(next);
+      linear_kind = kind;
+    }
+    linear_solver_name_ = linear->name();
     if (!progress_.stage_begun) {
       const double t0 = time_, t1 = time_ + stage.duration;
       if (!stage.release.empty()) {

@@ -192,6 +192,9 @@ class Simulation {
   /// Where the run stands (valid between steps: in the observers' calls, before and after run()).
   const RunProgress& progress() const { return progress_; }
   StartKind start_kind() const { return start_kind_; }
+  /// The name of the linear solver of the stage being run (stages[].linear_solver, or solver.linear_solver;
+  /// e.g. "klu", "mumps_ldlt"), or of the last stage run; empty before run().
+  const std::string& linear_solver_name() const { return linear_solver_name_; }
 
   /// The complete state of the run, valid between steps: in the observers' on_start, on_step and
   /// on_stage_end, and before and after run().
@@ -211,6 +214,7 @@ class Simulation {
   std::unique_ptr<EquilibriumProblem> problem_;
   model::AveragedConditionsTerm* averaged_ = nullptr;  ///< owned by problem_
   double time_ = 0.0;
+  std::string linear_solver_name_;
   bool contact_enabled_ = false;
   contact::DetectionParameters detection_;
   std::vector<int> contact_beams_;  ///< the beams in contact now (stages take tools out and put them back)

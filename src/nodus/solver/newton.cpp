@@ -35,8 +35,8 @@ bool NewtonSolver::solve_linear(const SparseMatrix& tangent, std::uint64_t patte
   // results on any machine and when resumed.
   if (settings_.reuse_factor && factored_ && factor_size_ == tangent.rows()) {
     const KrylovSolve krylov =
-        linear_.solve_on_factor(tangent, pattern_version != handed_version_, rhs, settings_.krylov_tolerance,
-                                settings_.krylov_iterations, x);
+        linear_->solve_on_factor(tangent, pattern_version != handed_version_, rhs, settings_.krylov_tolerance,
+                                 settings_.krylov_iterations, x);
     handed_version_ = pattern_version;
     timings_.krylov_iterations += krylov.iterations;
     if (krylov.accepted) return true;
@@ -46,16 +46,16 @@ bool NewtonSolver::solve_linear(const SparseMatrix& tangent, std::uint64_t patte
         settings_.krylov_tolerance, krylov.iterations);
   }
   if (!analyzed_ || pattern_version != analyzed_version_) {
-    linear_.analyze(tangent);
+    linear_->analyze(tangent);
     analyzed_ = true;
     analyzed_version_ = handed_version_ = pattern_version;
     ++timings_.analyses;
   }
-  factored_ = linear_.factorize(tangent);
+  factored_ = linear_->factorize(tangent);
   factor_size_ = tangent.rows();
   ++timings_.factorizations;
   if (!factored_) return false;
-  x = linear_.solve(rhs);
+  x = linear_->solve(rhs);
   return true;
 }
 

@@ -71,7 +71,7 @@ using FixedPointUpdate = std::function<bool(const NewtonProgress&)>;
 class NewtonSolver {
  public:
   NewtonSolver(LinearSolver& linear_solver, NewtonSettings settings)
-      : linear_(linear_solver), settings_(settings) {}
+      : linear_(&linear_solver), settings_(settings) {}
   /// Iterates from the problem's current unknowns. Convergence needs both |R| <= residual_tolerance and
   /// scaled |du| <= increment_tolerance. The tangent's pattern is analysed again when the problem's
   /// pattern_version() changes, or after reanalyze() (for problems that do not track it).
@@ -84,7 +84,15 @@ class NewtonSolver {
   /// tangent is analysed again if the linear solver's analysis reads the values
   /// (LinearSolver::analysis_reads_values), so that the resumed run repeats the one never stopped.
   void restart() {
-    if (linear_.analysis_reads_values()) analyzed_ = false;
+    if (linear_->analysis_reads_values()) analyzed_ = false;
+  }
+  /// Solves with `linear_solver` from now on (a stage's own choice): its analysis and factorisation start
+  /// afresh. Unchanged if it is the one in use.
+  void set_linear_solver(LinearSolver& linear_solver) {
+    if (&linear_solver == linear_) return;
+    linear_ = &linear_solver;
+    analyzed_ = false;
+    factored_ = false;
   }
   /// Damps the updates of later solves by the line search, or not (a stage's own choice).
   void set_line_search(bool on) { settings_.line_search = on; }
@@ -96,7 +104,7 @@ class NewtonSolver {
   bool solve_linear(const SparseMatrix& tangent, std::uint64_t pattern_version, const Eigen::VectorXd& rhs,
                     Eigen::VectorXd& x);
 
-  LinearSolver& linear_;
+  LinearSolver* linear_;  ///< never null
   NewtonSettings settings_;
   bool analyzed_ = false;
   std::uint64_t analyzed_version_ = 0;  ///< the problem's pattern_version() at the analysis

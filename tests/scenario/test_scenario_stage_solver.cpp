@@ -1,0 +1,123 @@
+// stages[].linear_solver: a stage's own sparse direct solver. Read in the main stages and the branches', it
+// falls back to solver.linear_solver; cholmod is refused where the tangent is not symmetric, and any choice
+// where solver.linear_solver is petsc (whose ranks share the rows). The reader names the line of the key;
+// validate() the same for a scenario built in code.
+
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "nodus/parallel/mpi_session.hpp"
+#include "nodus/scenario/scenario.hpp"
+#include "nodus/scenario/validate.hpp"
+
+namespace nodus::scenario {
+namespace {
+
+/// A scenario whose stage `second` and branch stage `third` take the lines `second` (line 12) and `third`
+/// (line 19) as their linear_solver, with `tail` appended (contact and solver sections).
+std::string text(const std::string& second, const std::string& third, const std::string& tail) {
+  return R"(materials:
+  - {name: nylon, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: rod, material: nylon, radius: 0.1, length: 10, elements: 4}
+conditions:
+  - {name: hold, type: clamp, beam: rod, at: start}
+stages:
+  - name: first
+    steps: 1
+  - name: second
+    steps: 1
+)" + second +
+         R"(
+branches:
+  - name: other
+    from: first
+    stages:
+      - name: third
+        steps: 1
+)" + third +
+         "\n" + tail;
+}
+
+std::string error_of(const std::string& yaml) {
+  try {
+    parse_scenario(yaml, "s.yaml");
+  } catch (const ScenarioError& error) {
+    return error.what();
+  }
+  ADD_FAILURE() << "no error for:\n" << yaml;
+  return {};
+}
+
+TEST(StageLinearSolver, ReadInStagesAndBranchesAndFallingBackToTheSolverSection) {
+  const Scenario s = parse_scenario(
+      text("    linear_solver: klu", "        linear_solver: mumps", "solver: {linear_solver: umfpack}\n"),
+      "s.yaml");
+  EXPECT_EQ(s.stages[0].linear_solver, StageLinearSolver::solver);
+  EXPECT_EQ(stage_linear_solver(s.stages[0], s.solver), LinearSolverKind::umfpack);
+  EXPECT_EQ(s.stages[1].linear_solver, StageLinearSolver::klu);
+  EXPECT_EQ(stage_linear_solver(s.stages[1], s.solver), LinearSolverKind::klu);
+  ASSERT_EQ(s.branches.size(), 1U);
+  EXPECT_EQ(stage_linear_solver(s.branches[0].stages[0], s.solver), LinearSolverKind::mumps);
+  // Each choice maps to the LinearSolverKind of the same name.
+  StageSpec stage;
+  for (const auto& [own, kind] : {std::pair{StageLinearSolver::cholmod, LinearSolverKind::cholmod},
+                                  std::pair{StageLinearSolver::umfpack, LinearSolverKind::umfpack},
+                                  std::pair{StageLinearSolver::mumps, LinearSolverKind::mumps},
+                                  std::pair{StageLinearSolver::klu, LinearSolverKind::klu}}) {
+    stage.linear_solver = own;
+    EXPECT_EQ(stage_linear_solver(stage, s.solver), kind);
+  }
+  // "solver" is the default, written or not.
+  const Scenario same =
+      parse_scenario(text("    linear_solver: solver", "", "solver: {linear_solver: klu}\n"), "s.yaml");
+  EXPECT_EQ(stage_linear_solver(same.stages[1], same.solver), LinearSolverKind::klu);
+}
+
+TEST(StageLinearSolver, CholmodIsRefusedWhereTheTangentIsNotSymmetric) {
+  const std::string varying =
+      "contact: {friction: 0.3, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n";
+  const std::string expected =
+      "expected solver, umfpack, mumps or klu (the tangent is not symmetric with contact.friction_tangent: "
+      "varying or contact.normal_updates: linearized, and cholmod reads one triangle), got cholmod";
+  EXPECT_EQ(error_of(text("    linear_solver: cholmod", "", varying)),
+            "s.yaml:12: stages[1].linear_solver: " + expected);
+  EXPECT_EQ(error_of(text("", "        linear_solver: cholmod", varying)),
+            "s.yaml:19: branches[0].stages[0].linear_solver: " + expected);
+  // With the frozen (symmetric) tangent it is accepted.
+  const Scenario frozen = parse_scenario(
+      text("    linear_solver: cholmod", "", "contact: {friction: 0.3}\nsolver: {linear_solver: umfpack}\n"),
+      "s.yaml");
+  EXPECT_EQ(stage_linear_solver(frozen.stages[1], frozen.solver), LinearSolverKind::cholmod);
+  // validate(): the same message, without the line.
+  Scenario built = parse_scenario(text("", "", varying), "s.yaml");
+  built.stages[1].linear_solver = StageLinearSolver::cholmod;
+  try {
+    validate(built);
+    ADD_FAILURE() << "validate() accepted cholmod with the varying tangent";
+  } catch (const ScenarioError& error) {
+    EXPECT_EQ(std::string(error.what()), "s.yaml: stages[1].linear_solver: " + expected);
+  }
+}
+
+TEST(StageLinearSolver, NoChoiceWithPetsc) {
+  if (!parallel::available())
+    GTEST_SKIP() << "no PETSc in this build: solver.linear_solver: petsc is refused";
+  EXPECT_EQ(
+      error_of(text("    linear_solver: mumps", "", "solver: {linear_solver: petsc}\n")),
+      "s.yaml:12: stages[1].linear_solver: expected solver (with solver.linear_solver: petsc every stage "
+      "runs on PETSc, which shares the rows among the MPI ranks), got mumps");
+  EXPECT_NO_THROW(
+      parse_scenario(text("    linear_solver: solver", "", "solver: {linear_solver: petsc}\n"), "s.yaml"));
+}
+
+TEST(StageLinearSolver, OnlyTheDeclaredChoices) {
+  EXPECT_EQ(
+      error_of(text("    linear_solver: petsc", "", "")),
+      "s.yaml:12: stages[1].linear_solver: expected one of solver | cholmod | umfpack | mumps | klu, got "
+      "petsc");
+}
+
+}  // namespace
+}  // namespace nodus::scenario
