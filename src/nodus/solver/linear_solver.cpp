@@ -118,7 +118,8 @@ class MumpsSolver final : public LinearSolver {
     pattern_nonzeros_ = a.nonZeros();
     // PORD finds no separator in a matrix whose unknowns are all coupled (one beam element, 18 free unknowns:
     // "no valid number of stages in multisector", and it ends the process); AMD orders small matrices, whose
-    // ordering costs nothing. No clique of 128 unknowns arises from elements of 27 (contact couples two).
+    // ordering costs nothing. A matrix of 128 unknowns or more without zeros would need a model of five
+    // elements (27 unknowns each) every two of which are in contact, and nothing else.
     icntl(7) = a.rows() < kSmallestForPord ? 0 : 4;
     id_.n = static_cast<MUMPS_INT>(a.rows());
     id_.nnz = static_cast<MUMPS_INT8>(entries_.size());
