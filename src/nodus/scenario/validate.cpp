@@ -379,9 +379,6 @@ void check_contact_list(const Checker& check, const Scenario& s, const std::vect
   }
 }
 
-/// The values of stages[].linear_solver, in StageLinearSolver's order.
-constexpr std::string_view kStageLinearSolverNames[] = {"solver", "cholmod", "umfpack", "mumps", "klu"};
-
 void check_stages(const Checker& check, const Scenario& s, const std::vector<StageSpec>& stages,
                   std::string_view prefix, AxisCheck& axes) {
   check.names(
@@ -391,9 +388,13 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
     const StageSpec& stage = stages[k];
     const std::string at = fmt::format("{}[{}]", prefix, k);
     check.keys(StageSpec::keys(), stage, "stages[]", at);
-    if (const std::string_view expected = stage_solver_expected(stage, s); !expected.empty())
-      check.fail(at + ".linear_solver", expected,
-                 std::string(kStageLinearSolverNames[static_cast<std::size_t>(stage.linear_solver)]));
+    if (const std::string_view expected = stage_solver_expected(stage, s); !expected.empty()) {
+      const auto keys = StageSpec::keys();
+      const auto key = std::find_if(keys.begin(), keys.end(), [](const Key<StageSpec>& k) {
+        return k.path == "stages[].linear_solver";
+      });
+      check.fail(at + ".linear_solver", expected, value_text(*key, stage));
+    }
     if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
       check.fail(at + ".stabilization_end", kStabilizationEndExpected,
                  format_number(stage.stabilization_end));
