@@ -143,6 +143,10 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
       "--branch", request.branch,
       "run only this branch, from the main run's checkpoint at the end of its `from` stage (with "
       "--resume: from its own newest checkpoint); the main stages must have been run");
+  run_cmd->add_option(
+      "--timing-from", request.timing_from,
+      "output directory of an earlier run of the same stages: the progress lines estimate the "
+      "time left from its timing.csv (default: the output directory's own, from an earlier run)");
   run_cmd->add_flag("--resume", request.resume,
                     "continue the interrupted run in the output directory from its newest checkpoint");
   request.jobs = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -10,7 +10,12 @@ out=${2:-results/$(basename "$scenario" .yaml)}
 scripts/setup.sh
 cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
 cmake --build build/release --target nodus nodus_python  # the report's knot metrics come from the module
-build/release/nodus run "$scenario" --out "$out"
+# The time left in the progress lines: from the timing of a run kept in examples/timing/ unless an earlier run
+# into "$out" left its own (docs/output.md, "Progress lines").
+timing=examples/timing/$(basename "$scenario" .yaml)
+timing_from=()
+if [ ! -f "$out/timing.csv" ] && [ -f "$timing/timing.csv" ]; then timing_from=(--timing-from "$timing"); fi
+build/release/nodus run "$scenario" --out "$out" "${timing_from[@]}"
 if [ "$(basename "$scenario" .yaml)" = monofilament_knot ]; then
   # Debian's python3 (with python3-numpy and python3-matplotlib from scripts/setup.sh).
   PYTHONPATH=build/release/python /usr/bin/python3 scripts/knot_report.py "$out"

@@ -155,7 +155,7 @@ def _scenario(scenario):
 
 
 def run(scenario, out, *, jobs=1, resume=False, quiet=False, verbose=False, branch=None,
-        stop_after_steps=0):
+        stop_after_steps=0, timing_from=None):
     """Runs a scenario exactly as `nodus run SCENARIO --out OUT` does, with the same files, checkpoints,
     branches and resume, and returns a RunOutcome (converged, interrupted, already_complete).
 
@@ -167,6 +167,8 @@ def run(scenario, out, *, jobs=1, resume=False, quiet=False, verbose=False, bran
     quiet, verbose: as the command line's --quiet and --verbose (log lines go to stderr).
     branch: run only this branch (the main run must have reached its `from` stage).
     stop_after_steps: for tests, stop as if killed after that many converged steps.
+    timing_from: the output folder of an earlier run of the same stages, as the command line's
+        --timing-from: the progress lines estimate the time left from its timing.csv files.
 
     The GIL is released while nodus computes. Ctrl-C stops the run at the end of the current Newton iteration
     (the checkpoints already written let `resume=True` continue it) and raises KeyboardInterrupt. Bad input
@@ -175,7 +177,8 @@ def run(scenario, out, *, jobs=1, resume=False, quiet=False, verbose=False, bran
     scenario = _scenario(scenario)
     return _nodus.run(scenario._core, _os.fspath(out), jobs=max(1, int(jobs)), resume=resume, quiet=quiet,
                       verbose=verbose, branch=branch or "", stop_after_steps=stop_after_steps,
-                      executable=_nodus.executable if _os.path.exists(_nodus.executable) else "")
+                      executable=_nodus.executable if _os.path.exists(_nodus.executable) else "",
+                      timing_from=_os.fspath(timing_from) if timing_from else "")
 
 
 class Simulation:

@@ -32,7 +32,8 @@ void bind_run(py::module_& m) {
   m.def(
       "run",
       [](const ScenarioHandle& scenario, const std::string& out, int jobs, bool resume, bool quiet,
-         bool verbose, const std::string& branch, int stop_after_steps, const std::string& executable) {
+         bool verbose, const std::string& branch, int stop_after_steps, const std::string& executable,
+         const std::string& timing_from) {
         output::use_stderr_logger();
         spdlog::set_level(verbose ? spdlog::level::debug : spdlog::level::info);
         run::Request request;
@@ -44,6 +45,7 @@ void bind_run(py::module_& m) {
         request.verbose = verbose;
         request.branch = branch;
         request.stop_after_steps = stop_after_steps;
+        request.timing_from = timing_from;
         // Branch processes read the scenario file: a scenario built in code has none and runs its branches
         // in this process, one at a time (the same results).
         if (!scenario->path.empty() && scenario->path != kDataLabel && jobs > 1 && !executable.empty()) {
@@ -83,7 +85,7 @@ void bind_run(py::module_& m) {
       },
       py::arg("scenario"), py::arg("out"), py::arg("jobs") = 1, py::arg("resume") = false,
       py::arg("quiet") = false, py::arg("verbose") = false, py::arg("branch") = "",
-      py::arg("stop_after_steps") = 0, py::arg("executable") = "",
+      py::arg("stop_after_steps") = 0, py::arg("executable") = "", py::arg("timing_from") = "",
       "Runs a scenario as `nodus run` does; see nodus.run.");
 }
 

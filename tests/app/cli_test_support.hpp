@@ -5,6 +5,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -127,15 +128,29 @@ inline const std::string kBranches = R"(branches:
           press: {translation: [0, 0.1, -0.1]}
 )";
 
+/// `text` (a timing.csv) without its last column, wall_seconds: what two runs of one scenario share.
+inline std::string without_wall_times(const std::string& text) {
+  std::string out;
+  std::size_t begin = 0;
+  while (begin < text.size()) {
+    const std::size_t end = std::min(text.find('\n', begin), text.size());
+    const std::string line = text.substr(begin, end - begin);
+    out += line.substr(0, line.rfind(',')) + "\n";
+    begin = end + 1;
+  }
+  return out;
+}
+
 /// Every file under `dir` by relative path, with its content; checkpoints and summary.json (they hold wall
-/// times) left out.
+/// times) left out, and timing.csv without its wall times.
 inline std::map<std::string, std::string> results(const fs::path& dir) {
   std::map<std::string, std::string> files;
   for (const auto& entry : fs::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file()) continue;
     const std::string name = fs::relative(entry.path(), dir).generic_string();
     if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
-    files[name] = read_file(entry.path());
+    files[name] = name.ends_with("timing.csv") ? without_wall_times(read_file(entry.path()))
+                                               : read_file(entry.path());
   }
   return files;
 }

@@ -39,6 +39,17 @@ def test_bad_value_in_a_file_has_the_command_lines_message(tmp_path):
     assert not out.exists()
 
 
+def test_a_missing_timing_folder_is_refused_before_anything_is_written(tmp_path):
+    out, missing = tmp_path / "out", tmp_path / "no_such_run"
+    with pytest.raises(nodus.ScenarioError) as error:
+        nodus.run(EXAMPLES / "tool_drag.yaml", out, quiet=True, timing_from=missing)
+    assert str(error.value) == (f"{missing}: --timing-from: expected the output folder of an earlier run, "
+                                "got nothing there")
+    cli = run_cli("run", EXAMPLES / "tool_drag.yaml", "--out", out, "--timing-from", missing, check_status=2)
+    assert cli.stderr.strip() == f"nodus: {error.value}"
+    assert not out.exists()
+
+
 def test_bad_value_in_a_dict_names_the_key_without_a_line(tmp_path):
     path, _ = bad_file(tmp_path)
     with pytest.raises(nodus.ScenarioError) as file_error:

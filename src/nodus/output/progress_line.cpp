@@ -19,7 +19,35 @@ double remaining_seconds(double elapsed_seconds, double start_time, double time,
 
 RemainingTime::RemainingTime(std::vector<double> stage_end_times, std::vector<int> stage_steps,
                              double start_time)
-    : ends_(std::move(stage_end_times)), steps_(std::move(stage_steps)), time_(start_time) {}
+    : ends_(std::move(stage_end_times)),
+      steps_(std::move(stage_steps)),
+      start_(start_time),
+      time_(start_time) {}
+
+bool RemainingTime::use_profile(const std::vector<double>& times, const std::vector<double>& wall_seconds) {
+  if (times.empty() || times.size() != wall_seconds.size() || ends_.empty()) return false;
+  const double end = ends_.back();
+  const double tolerance = 1e-9 * std::max(1.0, std::abs(end));
+  if (std::abs(times.back() - end) > tolerance || times.front() > start_ + tolerance) return false;
+  std::vector<double> u, w;
+  for (std::size_t i = 0; i < times.size(); ++i) {
+    if (i > 0 && (times[i] < times[i - 1] || wall_seconds[i] < wall_seconds[i - 1])) return false;
+    u.push_back(units(times[i]));
+    w.push_back(wall_seconds[i]);
+  }
+  profile_u_ = std::move(u);
+  profile_wall_ = std::move(w);
+  return true;
+}
+
+double RemainingTime::profile_wall(double u) const {
+  const auto upper = std::upper_bound(profile_u_.begin(), profile_u_.end(), u);
+  if (upper == profile_u_.begin()) return profile_wall_.front();
+  if (upper == profile_u_.end()) return profile_wall_.back();
+  const std::size_t i = static_cast<std::size_t>(upper - profile_u_.begin());
+  const double f = (u - profile_u_[i - 1]) / (profile_u_[i] - profile_u_[i - 1]);
+  return profile_wall_[i - 1] + f * (profile_wall_[i] - profile_wall_[i - 1]);
+}
 
 double RemainingTime::units(double time) const {
   double u = 0.0, t0 = 0.0;
@@ -36,6 +64,7 @@ double RemainingTime::units(double time) const {
 void RemainingTime::step(double time, double wall_seconds) {
   const double du = units(time) - units(time_);
   time_ = time;
+  if (wall_seconds >= 0.0) elapsed_ += wall_seconds;
   if (!(du > 0.0) || !(wall_seconds >= 0.0)) return;
   const double cost = wall_seconds / du;
   if (std::isnan(cost_))
@@ -47,6 +76,11 @@ void RemainingTime::step(double time, double wall_seconds) {
 double RemainingTime::seconds() const {
   const double left = (ends_.empty() ? 0.0 : units(ends_.back())) - units(time_);
   if (left <= 1e-12) return 0.0;
+  if (!profile_u_.empty()) {
+    const double now = profile_wall(units(time_));
+    const double done = now - profile_wall(units(start_));
+    if (done > 0.0) return elapsed_ / done * (profile_wall_.back() - now);
+  }
   return cost_ * left;
 }
 

@@ -42,6 +42,13 @@ double remaining_seconds(double elapsed_seconds, double start_time, double time,
 /// kWindow nominal steps (c += (1 - exp(-du / kWindow)) (dw / du - c) after a step of du units that took dw
 /// seconds). A new stage starts from the last stage's c. docs/performance.md shows how the estimate tracked
 /// the truth on the flagship.
+///
+/// No run's past shows what its later stages will cost (the knot's `settle` costs 3 s a nominal step after
+/// `pull`'s 0.3 s). Given the timing of an earlier run of the same loading program (use_profile: its wall
+/// time W at each of its steps, timing.csv), the estimate follows that run's cost instead:
+///   remaining = k * (W(u_end) - W(u(t))),   k = elapsed / (W(u(t)) - W(u(t_start))),
+/// W interpolated linearly in nominal steps u, k this run's wall time over the earlier run's for the same
+/// progress (the ratio of the two machines' speeds when the runs take the same steps).
 class RemainingTime {
  public:
   /// Nominal steps over which the cost per step is smoothed.
@@ -50,6 +57,10 @@ class RemainingTime {
   /// The stages by their end load times [s] (increasing) and nominal steps (>= 1); the run starts at load
   /// time `start_time` (a resumed or branched run starts inside or after some stages).
   RemainingTime(std::vector<double> stage_end_times, std::vector<int> stage_steps, double start_time);
+  /// Estimates from an earlier run's timing (see above): its load times [s] (non-decreasing) and its wall
+  /// time at each [s]. Used only if it covers this run, from its start to the end of its last stage (within
+  /// 1e-9 of the end time); returns whether it is used.
+  bool use_profile(const std::vector<double>& times, const std::vector<double>& wall_seconds);
   /// A converged step reached load time `time` [s], `wall_seconds` after the previous one (or the start).
   void step(double time, double wall_seconds);
   /// Wall time left [s]: NaN until a step has been measured, 0 at the end.
@@ -58,10 +69,16 @@ class RemainingTime {
   double units(double time) const;
 
  private:
+  /// The earlier run's wall time at progress u (linear between its steps) [s].
+  double profile_wall(double u) const;
+
   std::vector<double> ends_;
   std::vector<int> steps_;
+  double start_;
   double time_;
   double cost_ = std::numeric_limits<double>::quiet_NaN();  ///< c [s per nominal step]
+  double elapsed_ = 0.0;                                    ///< wall time of this run so far [s]
+  std::vector<double> profile_u_, profile_wall_;            ///< the earlier run's timing, by progress u
 };
 
 /// "stage NAME (i/N), step S, load time T / T_end, Newton its K, residual R, elapsed 12.3 s, remaining ~45 s"

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <set>
+#include <string>
 #include <utility>
 
 #include <spdlog/spdlog.h>
@@ -10,20 +12,62 @@
 
 namespace nodus::output {
 
-ProgressReporter::ProgressReporter(double min_interval_seconds, std::string label)
-    : min_interval_(std::max(0.0, min_interval_seconds)), label_(std::move(label)) {}
+ProgressReporter::ProgressReporter(double min_interval_seconds, std::string label,
+                                   const std::filesystem::path& timing, bool named)
+    : min_interval_(std::max(0.0, min_interval_seconds)),
+      label_(std::move(label)),
+      timing_path_(timing),
+      timing_named_(named) {
+  if (timing.empty()) return;
+  try {
+    if (named || std::filesystem::exists(timing)) timing_ = read_timing_csv(timing);
+  } catch (const std::exception& e) {
+    if (named) spdlog::warn("{}{}; the time left is estimated from this run alone", label_, e.what());
+  }
+}
+
+RemainingTime remaining_time(const scenario::Scenario& scenario, double start_time) {
+  std::vector<double> ends;
+  std::vector<int> steps;
+  double end = 0.0;
+  for (const scenario::StageSpec& stage : scenario.stages) {
+    end += stage.duration;  // as Simulation::stage_end_time
+    ends.push_back(end);
+    steps.push_back(stage.steps);
+  }
+  return RemainingTime(std::move(ends), std::move(steps), start_time);
+}
+
+bool use_timing(RemainingTime& remaining, const scenario::Scenario& scenario,
+                const std::vector<TimingRow>& timing) {
+  std::set<std::string> names;
+  for (const scenario::StageSpec& stage : scenario.stages) names.insert(stage.name);
+  std::vector<double> times, walls;
+  for (const TimingRow& row : timing) {
+    if (!names.contains(row.stage)) return false;
+    times.push_back(row.time);
+    walls.push_back(row.wall_seconds);
+  }
+  return remaining.use_profile(times, walls);
+}
 
 void ProgressReporter::on_start(const simulation::Simulation& sim) {
   start_ = Clock::now();
   last_line_ = last_step_ = start_;
   start_time_ = sim.time();
-  std::vector<double> ends;
-  std::vector<int> steps;
-  for (std::size_t s = 0; s < sim.scenario().stages.size(); ++s) {
-    ends.push_back(sim.stage_end_time(static_cast<int>(s)));
-    steps.push_back(sim.scenario().stages[s].steps);
-  }
-  remaining_.emplace(std::move(ends), std::move(steps), start_time_);
+  const auto& stages = sim.scenario().stages;
+  remaining_.emplace(remaining_time(sim.scenario(), start_time_));
+  if (timing_.empty()) return;
+  if (use_timing(*remaining_, sim.scenario(), timing_))
+    spdlog::info("{}the time left is estimated from the timing of an earlier run ({})", label_,
+                 timing_path_.string());
+  else if (timing_named_)
+    spdlog::warn(
+        "{}{} is not the timing of a run of these stages from load time {:.6g} s to {:.6g} s; the time left "
+        "is estimated from this run alone",
+        label_, timing_path_.string(), start_time_,
+        stages.empty() ? start_time_ : sim.stage_end_time(static_cast<int>(stages.size()) - 1));
+  timing_.clear();
 }
 
 void ProgressReporter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {

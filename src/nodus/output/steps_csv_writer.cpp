@@ -90,47 +90,58 @@ std::string steps_csv_up_to(std::string_view text, int last_step) {
   return out;
 }
 
-StepsCsvWriter::StepsCsvWriter(std::filesystem::path dir) : dir_(std::move(dir)), path_(dir_ / "steps.csv") {}
-
-StepsCsvWriter::~StepsCsvWriter() {
+CsvRowFile::~CsvRowFile() {
   if (file_) std::fclose(file_);
 }
 
-void StepsCsvWriter::write_line(const std::string& line) {
-  if (!file_)
-    throw std::runtime_error("steps.csv: '" + path_.string() + "' is not open (on_start not called)");
+std::string CsvRowFile::open(const std::string& header, bool resume, int last_step) {
+  std::error_code error;
+  const std::filesystem::path dir = path_.parent_path();
+  std::filesystem::create_directories(dir, error);
+  if (error) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + error.message());
+  if (file_) std::fclose(file_);
+  file_ = nullptr;
+  if (!resume) {
+    file_ = std::fopen(path_.c_str(), "w");
+    if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for writing");
+    write_line(header);
+    return header + "\n";
+  }
+  std::string kept = header + "\n";
+  if (std::ifstream in(path_, std::ios::binary); in) {
+    std::ostringstream text;
+    text << in.rdbuf();
+    kept = steps_csv_up_to(text.str(), last_step);
+    if (!kept.starts_with(header + "\n"))
+      throw std::runtime_error("'" + path_.string() + "' does not start with the header of this scenario");
+  }
+  write_file_atomically(path_, kept);
+  file_ = std::fopen(path_.c_str(), "a");
+  if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for appending");
+  return kept;
+}
+
+void CsvRowFile::write_line(const std::string& line) {
+  if (!file_) throw std::runtime_error("'" + path_.string() + "' is not open (on_start not called)");
   if (std::fputs(line.c_str(), file_) < 0 || std::fputc('\n', file_) == EOF || std::fflush(file_) != 0)
     throw std::runtime_error("error while writing '" + path_.string() + "'");
 }
 
-void StepsCsvWriter::on_start(const simulation::Simulation& sim) {
-  std::error_code error;
-  std::filesystem::create_directories(dir_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
-  if (file_) std::fclose(file_);
+void CsvRowFile::close() {
+  if (file_ && std::fclose(file_) != 0) {
+    file_ = nullptr;
+    throw std::runtime_error("error while closing '" + path_.string() + "'");
+  }
   file_ = nullptr;
+}
+
+void StepsCsvWriter::on_start(const simulation::Simulation& sim) {
   std::vector<std::string> names;
   for (int c = 0; c < sim.conditions().size(); ++c) names.push_back(sim.conditions().name(c));
   std::vector<std::string> bodies;
   for (const model::RigidBody& b : sim.model().bodies()) bodies.push_back(b.name);
-  const std::string header = steps_csv_header(names, bodies);
-  if (sim.start_kind() == simulation::StartKind::resumed) {
-    std::string kept = header + "\n";
-    if (std::ifstream in(path_, std::ios::binary); in) {
-      std::ostringstream text;
-      text << in.rdbuf();
-      kept = steps_csv_up_to(text.str(), sim.steps());
-      if (!kept.starts_with(header + "\n"))
-        throw std::runtime_error("'" + path_.string() + "' does not start with the header of this scenario");
-    }
-    write_file_atomically(path_, kept);
-    file_ = std::fopen(path_.c_str(), "a");
-    if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for appending");
-    return;
-  }
-  file_ = std::fopen(path_.c_str(), "w");
-  if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for writing");
-  write_line(header);
+  file_.open(steps_csv_header(names, bodies), sim.start_kind() == simulation::StartKind::resumed,
+             sim.steps());
 }
 
 void StepsCsvWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {
@@ -138,17 +149,13 @@ void StepsCsvWriter::on_step(const simulation::Simulation& sim, const simulation
   const std::string stage_name = record.stage >= 0 && record.stage < static_cast<int>(stages.size())
                                      ? stages[static_cast<std::size_t>(record.stage)].name
                                      : "";
-  write_line(steps_csv_row(record, stage_name, sim.conditions().size(),
-                           static_cast<int>(sim.model().bodies().size())));
+  file_.write_line(steps_csv_row(record, stage_name, sim.conditions().size(),
+                                 static_cast<int>(sim.model().bodies().size())));
 }
 
 void StepsCsvWriter::on_finish(const simulation::Simulation& /*sim*/,
                                const simulation::RunSummary& /*summary*/) {
-  if (file_ && std::fclose(file_) != 0) {
-    file_ = nullptr;
-    throw std::runtime_error("error while closing '" + path_.string() + "'");
-  }
-  file_ = nullptr;
+  file_.close();
 }
 
 }  // namespace nodus::output

@@ -36,6 +36,30 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
 /// to `last_step`, each with its line end (a quoted field may hold line breaks).
 std::string steps_csv_up_to(std::string_view text, int last_step);
 
+/// A CSV file written a row at a time, each row flushed at once, so that an interrupted run keeps its rows
+/// (steps.csv, timing.csv). Throws std::runtime_error naming the file on I/O errors.
+class CsvRowFile {
+ public:
+  explicit CsvRowFile(std::filesystem::path path) : path_(std::move(path)) {}
+  ~CsvRowFile();
+  CsvRowFile(const CsvRowFile&) = delete;
+  CsvRowFile& operator=(const CsvRowFile&) = delete;
+
+  /// Creates the file's folder and opens the file. Anew (`resume` false): the file holds `header` alone.
+  /// Resumed: the file keeps its header and its rows up to step `last_step` (steps_csv_up_to; the header
+  /// alone if it was missing), which are returned; throws if that header is not `header`.
+  std::string open(const std::string& header, bool resume, int last_step);
+  /// Appends `line` and a line end.
+  void write_line(const std::string& line);
+  /// Closes the file (on_finish).
+  void close();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+  std::FILE* file_ = nullptr;
+};
+
 /// Writes DIR/steps.csv: the header at the start of the run, a row per converged step, each row flushed at
 /// once so that an interrupted run keeps its rows. When the run resumes an interrupted one
 /// (simulation::StartKind::resumed), it keeps the header and the rows up to the resumed state's step and
@@ -43,24 +67,17 @@ std::string steps_csv_up_to(std::string_view text, int last_step);
 class StepsCsvWriter : public simulation::StepObserver {
  public:
   /// `dir`: output folder, created if missing.
-  explicit StepsCsvWriter(std::filesystem::path dir);
-  ~StepsCsvWriter() override;
-  StepsCsvWriter(const StepsCsvWriter&) = delete;
-  StepsCsvWriter& operator=(const StepsCsvWriter&) = delete;
+  explicit StepsCsvWriter(const std::filesystem::path& dir) : file_(dir / "steps.csv") {}
 
   void on_start(const simulation::Simulation& sim) override;
   void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
   void on_finish(const simulation::Simulation& sim, const simulation::RunSummary& summary) override;
 
   /// DIR/steps.csv.
-  const std::filesystem::path& path() const { return path_; }
+  const std::filesystem::path& path() const { return file_.path(); }
 
  private:
-  void write_line(const std::string& line);
-
-  std::filesystem::path dir_;
-  std::filesystem::path path_;
-  std::FILE* file_ = nullptr;
+  CsvRowFile file_;
 };
 
 }  // namespace nodus::output

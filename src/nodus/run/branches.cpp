@@ -102,8 +102,10 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
                      start.own ? simulation::StartKind::resumed : simulation::StartKind::branched);
   std::optional<RunOutputs> branch_outputs;  // rank 0 alone writes, under MPI
   if (parallel::is_root())
-    branch_outputs.emplace(branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
-                           "branch " + branch.name + ": ");
+    branch_outputs.emplace(
+        branch_dir(request.out, branch), branch_sim.scenario(), request.quiet, true,
+        "branch " + branch.name + ": ",
+        request.timing_from.empty() ? fs::path() : branch_dir(request.timing_from, branch) / "timing.csv");
   simulation::RunOptions options;
   options.stop_after_steps = steps_left;
   options.cancel = request.cancel;
@@ -204,6 +206,10 @@ bool run_branch_processes(const Request& request, const scenario::Scenario& main
       if (starts[b].own) args.emplace_back("--resume");
       if (request.quiet) args.emplace_back("--quiet");
       if (request.verbose) args.emplace_back("--verbose");
+      if (!request.timing_from.empty()) {
+        args.emplace_back("--timing-from");
+        args.push_back(request.timing_from.string());
+      }
       std::vector<char*> argv;
       for (std::string& a : args) argv.push_back(a.data());
       argv.push_back(nullptr);

@@ -102,7 +102,9 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   int steps_left = request.stop_after_steps;
 
   std::optional<RunOutputs> outputs;
-  if (writes) outputs.emplace(out, main_scenario, request.quiet, main_scenario.branches.empty());
+  if (writes)
+    outputs.emplace(out, main_scenario, request.quiet, main_scenario.branches.empty(), std::string(),
+                    request.timing_from.empty() ? fs::path() : request.timing_from / "timing.csv");
   simulation::RunOptions options;
   options.stop_after_steps = steps_left;
   options.cancel = request.cancel;
@@ -183,13 +185,26 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
 
 }  // namespace
 
+namespace {
+
+/// The folders named on the command line, before the scenario is read and echoed.
+void check_folders(const Request& request) {
+  output::check_output_folder(request.out);
+  if (!request.timing_from.empty() && !fs::is_directory(request.timing_from))
+    throw scenario::ScenarioError(fmt::format(
+        "{}: --timing-from: expected the output folder of an earlier run, got {}",
+        request.timing_from.string(), fs::exists(request.timing_from) ? "a file" : "nothing there"));
+}
+
+}  // namespace
+
 Outcome run(const Request& request) {
-  output::check_output_folder(request.out);  // before the scenario is read and echoed
+  check_folders(request);
   return run_checked(scenario::read_scenario(request.scenario_path), request);
 }
 
 Outcome run(scenario::Scenario scenario, const Request& request) {
-  output::check_output_folder(request.out);
+  check_folders(request);
   return run_checked(std::move(scenario), request);
 }
 

@@ -29,6 +29,10 @@ struct Request {
   int jobs = 1;        ///< branches run side by side, at most
   std::string branch;  ///< run only this branch (the main run has reached its `from` stage)
   bool verbose = false;
+  /// The output folder of an earlier run of the same scenario (or of one with the same stages): the progress
+  /// lines estimate the time left from its timing.csv (and a branch from its branch's). Empty: from `out`'s
+  /// own, left there by an earlier run, if any.
+  std::filesystem::path timing_from;
   /// The nodus executable that runs a branch in a process of its own (`EXE run SCENARIO --out DIR --branch
   /// NAME`). Empty: branches run in this process, one at a time, whatever `jobs` says (what a library caller
   /// such as Python gets by default; the results are the same).

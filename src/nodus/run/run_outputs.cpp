@@ -5,17 +5,23 @@
 namespace nodus::run {
 
 RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenario& scenario, bool quiet,
-                       bool write_summary, std::string label)
+                       bool write_summary, std::string label, const std::filesystem::path& timing)
     : steps_(dir),
+      timing_(dir),
       vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
       final_nodes_(dir),
       contact_tables_(dir),
       stage_ends_(dir),
       summary_(dir, write_summary),
       checkpoints_(dir, scenario.output.checkpoint_every),
-      progress_(scenario.output.progress_seconds, std::move(label)) {
+      progress_(scenario.output.progress_seconds, std::move(label),
+                quiet            ? std::filesystem::path()
+                : timing.empty() ? timing_.path()
+                                 : timing,
+                !timing.empty()) {
   // The checkpoint comes after the files of its step, so that they are complete up to it.
-  observers_ = {&steps_, &vtk_, &final_nodes_, &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
+  observers_ = {&steps_,          &timing_,     &vtk_,     &final_nodes_,
+                &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
   if (!quiet) observers_.push_back(&progress_);
 }
 

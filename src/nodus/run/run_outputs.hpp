@@ -1,7 +1,7 @@
 #pragma once
 /// The output writers of one run (the main run, or a branch) into a folder, as the observers of its
-/// Simulation: steps.csv, VTK, final nodes, contact tables, stage-end files, summary.json, checkpoints and
-/// the progress line (docs/output.md).
+/// Simulation: steps.csv, timing.csv, VTK, final nodes, contact tables, stage-end files, summary.json,
+/// checkpoints and the progress line (docs/output.md).
 
 #include <filesystem>
 #include <string>
@@ -13,6 +13,7 @@
 #include "nodus/output/stage_end_writer.hpp"
 #include "nodus/output/steps_csv_writer.hpp"
 #include "nodus/output/summary_writer.hpp"
+#include "nodus/output/timing_csv.hpp"
 #include "nodus/output/vtk_writer.hpp"
 #include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/scenario/scenario.hpp"
@@ -23,9 +24,11 @@ namespace nodus::run {
 class RunOutputs {
  public:
   /// `write_summary`: whether summary.json is written at the end (the main run of a scenario with branches
-  /// writes it itself, after them); `label` prefixes the progress lines.
+  /// writes it itself, after them); `label` prefixes the progress lines. `timing`: the timing.csv of an
+  /// earlier run of the same program, for the progress lines' estimate of the time left; empty: DIR's own,
+  /// left by an earlier run into DIR (read before this run replaces it), if any and if it serves.
   RunOutputs(const std::filesystem::path& dir, const scenario::Scenario& scenario, bool quiet,
-             bool write_summary, std::string label = {});
+             bool write_summary, std::string label = {}, const std::filesystem::path& timing = {});
   RunOutputs(const RunOutputs&) = delete;
   RunOutputs& operator=(const RunOutputs&) = delete;
 
@@ -34,6 +37,7 @@ class RunOutputs {
 
  private:
   output::StepsCsvWriter steps_;
+  output::TimingCsvWriter timing_;
   output::VtkSeriesWriter vtk_;
   output::FinalNodesWriter final_nodes_;
   output::ContactCsvWriter contact_tables_;

@@ -189,6 +189,9 @@ class Simulation {
   double stage_end_time(int stage) const;
   /// Converged steps so far (those of a restored state included).
   int steps() const { return counters_.steps; }
+  /// The run's cumulative counters (those of a restored state included), as of the last converged step: in
+  /// the observers' on_step they include that step.
+  const RunCounters& counters() const { return counters_; }
   /// Where the run stands (valid between steps: in the observers' calls, before and after run()).
   const RunProgress& progress() const { return progress_; }
   StartKind start_kind() const { return start_kind_; }
