@@ -1,5 +1,6 @@
 // timing.csv and the time left estimated from an earlier run's (`nodus run --timing-from`, docs/output.md).
 
+#include <algorithm>
 #include <filesystem>
 #include <sstream>
 #include <string>
@@ -131,26 +132,32 @@ TEST(Timing, AMissingFolderIsBadInput) {
   EXPECT_FALSE(fs::exists(out));
 }
 
-// scripts/example.sh gives the flagship the timing kept in examples/timing/: it must be of the example's
+// scripts/example.sh gives an example the timing kept in examples/timing/NAME: it must be of the example's
 // stages, for the main run and each branch (regenerate it as examples/timing/README.md says, if this fails).
-TEST(Timing, TheTimingKeptForTheFlagshipServesItsRunAndItsBranches) {
-  const scenario::Scenario main =
-      scenario::read_scenario(NODUS_SOURCE_DIR "/examples/monofilament_knot.yaml");
-  const fs::path kept = fs::path(NODUS_SOURCE_DIR) / "examples" / "timing" / "monofilament_knot";
-  output::RemainingTime main_left = output::remaining_time(main, 0.0);
-  EXPECT_TRUE(output::use_timing(main_left, main, output::read_timing_csv(kept / "timing.csv")));
-  ASSERT_FALSE(main.branches.empty());
-  for (std::size_t b = 0; b < main.branches.size(); ++b) {
-    const scenario::Scenario branch = scenario::branch_scenario(main, b);
-    double start = 0.0;  // the end of the branch's `from` stage
-    for (int s = 0; s <= main.branches[b].from; ++s)
-      start += main.stages[static_cast<std::size_t>(s)].duration;
-    const std::vector<output::TimingRow> rows =
-        output::read_timing_csv(kept / "branches" / main.branches[b].name / "timing.csv");
-    ASSERT_FALSE(rows.empty());
-    EXPECT_NEAR(rows.front().time, start, 1e-9) << main.branches[b].name;
-    output::RemainingTime left = output::remaining_time(branch, start);
-    EXPECT_TRUE(output::use_timing(left, branch, rows)) << main.branches[b].name;
+TEST(Timing, TheTimingKeptForTheExamplesServesTheirRunsAndBranches) {
+  const fs::path examples = fs::path(NODUS_SOURCE_DIR) / "examples";
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(examples / "timing"))
+    if (entry.is_directory()) names.push_back(entry.path().filename().string());
+  EXPECT_NE(std::find(names.begin(), names.end(), "monofilament_knot"), names.end());  // the flagship's
+  for (const std::string& name : names) {
+    SCOPED_TRACE(name);
+    const scenario::Scenario main = scenario::read_scenario((examples / (name + ".yaml")).string());
+    const fs::path kept = examples / "timing" / name;
+    output::RemainingTime main_left = output::remaining_time(main, 0.0);
+    EXPECT_TRUE(output::use_timing(main_left, main, output::read_timing_csv(kept / "timing.csv")));
+    for (std::size_t b = 0; b < main.branches.size(); ++b) {
+      const scenario::Scenario branch = scenario::branch_scenario(main, b);
+      double start = 0.0;  // the end of the branch's `from` stage
+      for (int s = 0; s <= main.branches[b].from; ++s)
+        start += main.stages[static_cast<std::size_t>(s)].duration;
+      const std::vector<output::TimingRow> rows =
+          output::read_timing_csv(kept / "branches" / main.branches[b].name / "timing.csv");
+      ASSERT_FALSE(rows.empty());
+      EXPECT_NEAR(rows.front().time, start, 1e-9) << main.branches[b].name;
+      output::RemainingTime left = output::remaining_time(branch, start);
+      EXPECT_TRUE(output::use_timing(left, branch, rows)) << main.branches[b].name;
+    }
   }
 }
 
