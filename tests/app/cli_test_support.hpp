@@ -149,8 +149,8 @@ inline std::map<std::string, std::string> results(const fs::path& dir) {
     if (!entry.is_regular_file()) continue;
     const std::string name = fs::relative(entry.path(), dir).generic_string();
     if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
-    files[name] = name.ends_with("timing.csv") ? without_wall_times(read_file(entry.path()))
-                                               : read_file(entry.path());
+    files[name] =
+        name.ends_with("timing.csv") ? without_wall_times(read_file(entry.path())) : read_file(entry.path());
   }
   return files;
 }

@@ -148,9 +148,7 @@ TEST(Timing, TheTimingKeptForTheExamplesServesTheirRunsAndBranches) {
     EXPECT_TRUE(output::use_timing(main_left, main, output::read_timing_csv(kept / "timing.csv")));
     for (std::size_t b = 0; b < main.branches.size(); ++b) {
       const scenario::Scenario branch = scenario::branch_scenario(main, b);
-      double start = 0.0;  // the end of the branch's `from` stage
-      for (int s = 0; s <= main.branches[b].from; ++s)
-        start += main.stages[static_cast<std::size_t>(s)].duration;
+      const double start = scenario::stage_end_time(main, main.branches[b].from);  // where the branch starts
       const std::vector<output::TimingRow> rows =
           output::read_timing_csv(kept / "branches" / main.branches[b].name / "timing.csv");
       ASSERT_FALSE(rows.empty());

@@ -29,11 +29,9 @@ ProgressReporter::ProgressReporter(double min_interval_seconds, std::string labe
 RemainingTime remaining_time(const scenario::Scenario& scenario, double start_time) {
   std::vector<double> ends;
   std::vector<int> steps;
-  double end = 0.0;
-  for (const scenario::StageSpec& stage : scenario.stages) {
-    end += stage.duration;  // as Simulation::stage_end_time
-    ends.push_back(end);
-    steps.push_back(stage.steps);
+  for (std::size_t s = 0; s < scenario.stages.size(); ++s) {
+    ends.push_back(scenario::stage_end_time(scenario, static_cast<int>(s)));
+    steps.push_back(scenario.stages[s].steps);
   }
   return RemainingTime(std::move(ends), std::move(steps), start_time);
 }

@@ -895,6 +895,13 @@ Scenario parse_scenario(const std::string& yaml_text, const std::string& path);
 /// continues `main` as the branch asks.
 Scenario branch_scenario(const Scenario& main, std::size_t branch);
 
+/// Load time at the end of stage `stage` (0 based) [s]: the stages' durations up to it, summed.
+inline double stage_end_time(const Scenario& scenario, int stage) {
+  double t = 0.0;
+  for (int i = 0; i <= stage; ++i) t += scenario.stages.at(static_cast<std::size_t>(i)).duration;
+  return t;
+}
+
 /// The table of all keys of the file format (name, type, unit, default, range, help) as a markdown table;
 /// the same table drives the reader's messages (see keys.hpp) and is pasted into docs/scenario.md.
 std::string scenario_keys_markdown();

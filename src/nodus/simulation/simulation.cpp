@@ -286,9 +286,7 @@ const Eigen::VectorXd& Simulation::state() const {
 }
 
 double Simulation::stage_end_time(int stage) const {
-  double t = 0.0;
-  for (int i = 0; i <= stage; ++i) t += scenario_.stages.at(static_cast<std::size_t>(i)).duration;
-  return t;
+  return scenario::stage_end_time(scenario_, stage);
 }
 
 SimulationState Simulation::snapshot() const {
