@@ -42,6 +42,7 @@
 #include "nodus/run/run.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "nodus/solver/blas_kernels.hpp"
 
 namespace {
 
@@ -63,6 +64,20 @@ bool prefer_passive_openmp_wait(char** argv) {
   ::unsetenv("OMP_WAIT_POLICY");
   ::unsetenv("NODUS_SET_OMP_WAIT_POLICY");
   return false;
+}
+
+/// `nodus kernels`: OpenBLAS's kernels and the OPENBLAS_CORETYPE that would serve this processor better (it
+/// is read when OpenBLAS is loaded, before main(), so only whoever starts nodus can set it:
+/// scripts/example.sh does). `coretype_only`: that value alone, or an empty line.
+std::string kernels_lines(bool coretype_only) {
+  const nodus::solver::BlasKernels k = nodus::solver::blas_kernels();
+  if (coretype_only) return k.better + "\n";
+  if (k.loaded.empty()) return "the BLAS is not OpenBLAS: nothing to choose\n";
+  if (k.better.empty()) return fmt::format("OpenBLAS kernels: {}\n", k.loaded);
+  return fmt::format(
+      "OpenBLAS kernels: {} (its generic ones); this processor can run its {} kernels: start nodus with "
+      "OPENBLAS_CORETYPE={} (factorisations up to twice as fast, docs/performance.md)\n",
+      k.loaded, k.better, k.better);
 }
 
 /// The knot type of `curve` as one line.
@@ -167,6 +182,15 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
 
   app.add_subcommand("keys", "print the table of scenario keys (markdown)");
 
+  bool coretype_only = false;
+  CLI::App* kernels_cmd = app.add_subcommand(
+      "kernels",
+      "print the kernels OpenBLAS took and, where they are its generic ones on a processor that can "
+      "run better, the OPENBLAS_CORETYPE to start nodus with");
+  kernels_cmd->add_flag(
+      "--coretype", coretype_only,
+      "print only that OPENBLAS_CORETYPE value (an empty line where there is none), for scripts");
+
   std::string nodes_path, knot_yarn;
   std::vector<std::string> knot_beams;
   double separation = 1.2;
@@ -209,6 +233,10 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
   try {
     if (app.got_subcommand("keys")) {
       if (nodus::parallel::is_root()) std::fputs(nodus::scenario::scenario_keys_markdown().c_str(), stdout);
+      return 0;
+    }
+    if (app.got_subcommand("kernels")) {
+      if (nodus::parallel::is_root()) std::fputs(kernels_lines(coretype_only).c_str(), stdout);
       return 0;
     }
     if (app.got_subcommand("knot")) {

@@ -15,6 +15,13 @@ cmake --build build/release --target nodus nodus_python  # the report's knot met
 timing=examples/timing/$(basename "$scenario" .yaml)
 timing_from=()
 if [ ! -f "$out/timing.csv" ] && [ -f "$timing/timing.csv" ]; then timing_from=(--timing-from "$timing"); fi
+# OpenBLAS's kernels for this processor where Debian's OpenBLAS is older than the processor and took its generic
+# ones (`nodus kernels`; docs/performance.md, "OpenBLAS's kernels"): the factorisations of the yarn examples
+# (MUMPS) run about a quarter faster. The flagship factorises with KLU, which uses no BLAS.
+if [ -z "${OPENBLAS_CORETYPE:-}" ]; then
+  coretype=$(build/release/nodus kernels --coretype)
+  if [ -n "$coretype" ]; then export OPENBLAS_CORETYPE=$coretype; fi
+fi
 build/release/nodus run "$scenario" --out "$out" "${timing_from[@]}"
 if [ "$(basename "$scenario" .yaml)" = monofilament_knot ]; then
   # Debian's python3 (with python3-numpy and python3-matplotlib from scripts/setup.sh).

@@ -112,6 +112,20 @@ TEST(Cli, OpenMpThreadsWaitPassivelyUnlessTheUserChose) {
   EXPECT_EQ(libgomp_policy("OMP_WAIT_POLICY=ACTIVE"), "OMP_WAIT_POLICY = 'ACTIVE'");
 }
 
+// The OPENBLAS_CORETYPE this processor can run where OpenBLAS takes its generic kernels: "SkylakeX" with
+// AVX-512 (F, CD, BW, DQ, VL), "Haswell" with AVX2 and FMA, else none (asked of the processor here, not of
+// nodus).
+namespace {
+std::string processor_coretype() {
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
+      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
+      __builtin_cpu_supports("avx512vl"))
+    return "SkylakeX";
+  return __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") ? "Haswell" : "";
+}
+}  // namespace
+
 // Where OpenBLAS took its generic "Prescott" kernels on a processor that has AVX2 (or AVX-512), a run says
 // which OPENBLAS_CORETYPE would serve it better; with kernels that match the processor it says nothing.
 // OPENBLAS_CORETYPE forces OpenBLAS's choice, OPENBLAS_VERBOSE=2 makes it print it ("Core: NAME").
@@ -128,18 +142,39 @@ TEST(Cli, SaysWhenOpenBlasTookItsGenericKernels) {
   const std::string generic = run_with("Prescott");
   if (generic.find("Core: Prescott") == std::string::npos)
     GTEST_SKIP() << "the BLAS is not OpenBLAS (or prints nothing)";
-  __builtin_cpu_init();
-  const bool avx2 = __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma");
-  const bool avx512 = __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512cd") &&
-                      __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq") &&
-                      __builtin_cpu_supports("avx512vl");
-  if (!avx2 && !avx512) {
+  const std::string coretype = processor_coretype();
+  if (coretype.empty()) {
     EXPECT_EQ(generic.find("OPENBLAS_CORETYPE="), std::string::npos) << generic;
     return;
   }
-  const std::string advice = std::string("OPENBLAS_CORETYPE=") + (avx512 ? "SkylakeX" : "Haswell");
+  const std::string advice = "OPENBLAS_CORETYPE=" + coretype;
   EXPECT_NE(generic.find(advice), std::string::npos) << generic;
   const std::string matched = run_with("Haswell");
   EXPECT_NE(matched.find("Core: Haswell"), std::string::npos) << matched;
   EXPECT_EQ(matched.find("OPENBLAS_CORETYPE="), std::string::npos) << matched;
+}
+
+// `nodus kernels --coretype` prints the OPENBLAS_CORETYPE that scripts/example.sh starts nodus with: the
+// processor's kernels where OpenBLAS took its generic ones, nothing where its choice already matches.
+TEST(Cli, KernelsNamesTheCoreTypeForScripts) {
+  const auto kernels_with = [&](const std::string& core, const std::string& flag) {
+    const fs::path out = scratch() / "kernels.txt";
+    const fs::path err = scratch() / "kernels_err.txt";
+    const std::string cmd = "env OPENBLAS_VERBOSE=2 OPENBLAS_CORETYPE=" + core + " " + NODUS_BINARY +
+                            " kernels " + flag + " > " + out.string() + " 2> " + err.string();
+    EXPECT_EQ(std::system(cmd.c_str()), 0);
+    return std::make_pair(nodus::testing::read_file(out), nodus::testing::read_file(err));
+  };
+  const auto [generic, generic_log] = kernels_with("Prescott", "--coretype");
+  if (generic_log.find("Core: Prescott") == std::string::npos)
+    GTEST_SKIP() << "the BLAS is not OpenBLAS (or prints nothing)";
+  const std::string advice = processor_coretype();
+  EXPECT_EQ(generic, advice + "\n");
+  const auto [line, line_log] = kernels_with("Prescott", "");
+  EXPECT_NE(line.find("OpenBLAS kernels: Prescott"), std::string::npos) << line;
+  if (advice.empty()) return;
+  EXPECT_NE(line.find("OPENBLAS_CORETYPE=" + advice), std::string::npos) << line;
+  const auto [matched, matched_log] = kernels_with(advice, "--coretype");
+  EXPECT_NE(matched_log.find("Core: " + advice), std::string::npos) << matched_log;
+  EXPECT_EQ(matched, "\n");
 }
