@@ -15,9 +15,9 @@ cmake --build build/release --target nodus nodus_python  # the report's knot met
 timing=examples/timing/$(basename "$scenario" .yaml)
 timing_from=()
 if [ ! -f "$out/timing.csv" ] && [ -f "$timing/timing.csv" ]; then timing_from=(--timing-from "$timing"); fi
-# OpenBLAS's kernels for this processor where Debian's OpenBLAS is older than the processor and took its generic
-# ones (`nodus kernels`; docs/performance.md, "OpenBLAS's kernels"): the factorisations of the yarn examples
-# (MUMPS) run about a quarter faster. The flagship factorises with KLU, which uses no BLAS.
+# OpenBLAS's kernels for this processor where Debian's OpenBLAS is older than the processor and took its
+# generic ones (`nodus kernels`; docs/performance.md, "Threads on a 16-core machine"): where the 3x1 knot
+# forms, its MUMPS factorisations run about a quarter faster. The flagship factorises with KLU (no BLAS).
 if [ -z "${OPENBLAS_CORETYPE:-}" ]; then
   coretype=$(build/release/nodus kernels --coretype)
   if [ -n "$coretype" ]; then export OPENBLAS_CORETYPE=$coretype; fi
