@@ -9,7 +9,8 @@
 //    the nominal step;
 //  - sliver: a step within 1 % of the remainder of the interval (or longer than it) takes all of it;
 //  - secant predictor: each step starts from the linear extrapolation of the last converged step;
-//  - resumption: advance() stopped after a step and continued from its StepperState gives the same steps.
+//  - resumption: advance() stopped after a step and continued from its StepperState gives the same steps;
+//  - the step solver sees the halvings of the attempt so far (StepperState::cutbacks), 0 between steps.
 // And with the real Newton solver, whose iterations (at most 6 here) do not suffice for a large step of the
 // hardening springs, the cutbacks take the stepping through and the end state solves the springs.
 
@@ -429,6 +430,35 @@ TEST(LoadStepping, ResumedSteppingTakesTheSameSteps) {
     }
     EXPECT_EQ(p.unknowns(), end_whole) << "bit for bit";
   }
+}
+
+TEST(LoadStepping, TheSolverSeesTheCutbacksOfItsAttempt) {
+  // Every attempt fails but the last one allowed (max_cutbacks 3): the solver, which reads the stepper's
+  // cutbacks, sees 0, 1, 2, 3, and the step of 1/8 converges; the stepping stopped there, the state reads 0.
+  Springs p;
+  ScriptedSolver scripted;
+  const StepSolver inner = scripted.solver();
+  StepControl c;
+  c.nominal_step = 1.0;
+  c.max_cutbacks = 3;
+  StepperState state = start_stepping(0.0, 1.0, c);
+  std::vector<int> seen;
+  scripted.fails = [&](double, double) { return state.cutbacks < c.max_cutbacks; };
+  const StepSolver solve = [&](SteppedProblem& q) {
+    seen.push_back(state.cutbacks);
+    return inner(q);
+  };
+  AdvanceResult r = advance(p, solve, 1.0, c, state, [](const StepResult&) { return false; });
+  ASSERT_TRUE(r.stopped);
+  EXPECT_EQ(seen, (std::vector<int>{0, 1, 2, 3}));
+  EXPECT_EQ(state.time, 0.125);
+  EXPECT_EQ(state.cutbacks, 0);
+  // A step that fails for good leaves 0 too.
+  scripted.fails = [](double, double) { return true; };
+  r = advance(p, solve, 1.0, c, state, [](const StepResult&) { return true; });
+  EXPECT_FALSE(r.completed);
+  EXPECT_NE(r.failure.find("failed after 3 cutbacks"), std::string::npos) << r.failure;
+  EXPECT_EQ(state.cutbacks, 0);
 }
 
 }  // namespace

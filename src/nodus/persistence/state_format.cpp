@@ -41,6 +41,7 @@ struct StepperFields {
   double time, step;
   Eigen::VectorXd previous;
   double previous_step;
+  int cutbacks;  // not stored: 0 between steps, where every checkpoint is taken
 };
 struct ProgressFields {
   int stage;

@@ -42,6 +42,9 @@ inline bool one_to_five(double v) {
 inline bool fraction(double v) {  // (0, 1]
   return v > 0.0 && v <= 1.0;
 }
+inline bool proper_fraction(double v) {  // (0, 1)
+  return v > 0.0 && v < 1.0;
+}
 }  // namespace ranges
 
 /// One key of the file, filling (if scalar) a field of `Owner`.

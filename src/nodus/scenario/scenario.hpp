@@ -483,6 +483,10 @@ struct SolverSettings {
   int max_newton_iterations = ::nodus::solver::NewtonSettings{}.max_iterations;  ///< per step attempt, >= 1
   /// Iterations without a new smallest residual after which a step attempt is given up, >= 0 (0: never).
   int stagnation_iterations = ::nodus::solver::NewtonSettings{}.stagnation_iterations;
+  /// A step attempt is given up once the smallest residual of its last `progress_window` iterations is not
+  /// below `progress_ratio` times the smallest before them, >= 0 (0: never).
+  int progress_window = ::nodus::solver::NewtonSettings{}.progress_window;
+  double progress_ratio = ::nodus::solver::NewtonSettings{}.progress_ratio;  ///< in (0, 1)
   double residual_tolerance = 1e-8;   ///< |R| <= tol * force scale [-], > 0
   double increment_tolerance = 1e-6;  ///< |du|_inf <= tol * length scale [-], > 0
   /// Successive halvings of a step before giving up, >= 0.
@@ -524,6 +528,13 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
                ranges::non_negative,
                "a step attempt is given up (and the step cut back) after this many iterations without a "
                "residual smaller than the smallest so far; 0: never (docs/performance.md)"),
+      K::whole("solver.progress_window", &SolverSettings::progress_window, ">= 0", ranges::non_negative,
+               "a step attempt is given up (and the step cut back) once the smallest residual of its last "
+               "progress_window iterations is not below progress_ratio times the smallest before them (at "
+               "least two before them), except the last attempt max_cutbacks allows; 0: never "
+               "(docs/performance.md)"),
+      K::real("solver.progress_ratio", &SolverSettings::progress_ratio, "", "in (0, 1)",
+              ranges::proper_fraction, "the reduction of the residual that progress_window asks for"),
       K::real("solver.residual_tolerance", &SolverSettings::residual_tolerance, "", "> 0", ranges::positive,
               "converged when the residual norm <= tolerance times the force scale"),
       K::real("solver.increment_tolerance", &SolverSettings::increment_tolerance, "", "> 0", ranges::positive,

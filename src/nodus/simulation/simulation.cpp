@@ -347,6 +347,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   solver::NewtonSettings newton_settings;
   newton_settings.max_iterations = scenario_.solver.max_newton_iterations;
   newton_settings.stagnation_iterations = scenario_.solver.stagnation_iterations;
+  newton_settings.progress_window = scenario_.solver.progress_window;
+  newton_settings.progress_ratio = scenario_.solver.progress_ratio;
   newton_settings.line_search = scenario_.solver.line_search;
   newton_settings.reuse_factor = scenario_.solver.reuse_factor;
   newton_settings.krylov_iterations = scenario_.solver.krylov_iterations;
@@ -363,6 +365,10 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   // The fold check of the converged state, which the step's record reports once the step is accepted.
   model::FoldCheck folds;
   const solver::StepSolver solve_step = [&](solver::SteppedProblem& p) {
+    // The last attempt a step is allowed gets Newton's whole budget: giving up early there would end the run
+    // (solver.progress_window; docs/performance.md, "Failing sooner").
+    newton.set_progress_window(
+        progress_.stepper.cutbacks < scenario_.solver.max_cutbacks ? scenario_.solver.progress_window : 0);
     solver::NewtonReport report = loops ? loops->solve() : newton.solve(p);
     if (report.converged) {
       folds = model_.fold_check(problem_->state());

@@ -40,7 +40,8 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
   const double eps = 1e-12 * std::max(1.0, std::abs(t1));
   double& t = state.time;
   double& step = state.step;
-  int cutbacks = 0;
+  int& cutbacks = state.cutbacks;
+  cutbacks = 0;
   double attempted_step = step;  // the size of the step attempt before its cutbacks
   // Secant predictor: the free unknowns move as in the last converged step, scaled to the new step.
   while (t1 - t > eps) {
@@ -58,12 +59,14 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
       problem.restore();
       if (report.cancelled) {
         step = attempted_step;
+        cutbacks = 0;
         result.stopped = result.cancelled = true;
         return result;
       }
       if (cutbacks >= control.max_cutbacks) {
         result.failure = fmt::format("step from load time {:.9g} to {:.9g} failed after {} cutbacks: {}", t,
                                      t + step, cutbacks, report.failure);
+        cutbacks = 0;
         return result;
       }
       ++cutbacks;

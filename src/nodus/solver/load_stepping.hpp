@@ -57,6 +57,9 @@ struct StepperState {
   /// converged yet in this interval).
   Eigen::VectorXd previous;
   double previous_step = 0.0;  ///< size of the last converged step (0: none)
+  /// Halvings of the step being attempted so far (0 between steps): a StepSolver may read it, for example
+  /// to give the last attempt allowed (StepControl::max_cutbacks) Newton's whole budget.
+  int cutbacks = 0;
 };
 
 /// The state at the start of an interval [t0, t1]: the first step is the nominal one, or the whole interval

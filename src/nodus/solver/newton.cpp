@@ -3,7 +3,9 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <string>
 #include <utility>
+#include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -24,6 +26,19 @@ class Stopwatch {
   double& total_;
   std::chrono::steady_clock::time_point start_;
 };
+
+/// Why a solve should stop for too little progress (NewtonSettings::progress_window), or "" while it makes
+/// enough. `history`: |R| after each iteration since the problem last changed.
+std::string progress_failure(const std::vector<double>& history, int progress_window, double progress_ratio) {
+  const auto w = static_cast<std::size_t>(progress_window);
+  if (w == 0 || history.size() < w + 2) return {};
+  const auto window = history.end() - static_cast<std::ptrdiff_t>(w);
+  const double before = *std::min_element(history.begin(), window);
+  const double recent = *std::min_element(window, history.end());
+  if (recent <= progress_ratio * before) return {};
+  return fmt::format("too little progress (smallest |R| {:.3e} in the last {} iterations, {:.3e} before them",
+                     recent, w, before);
+}
 
 }  // namespace
 
@@ -77,6 +92,8 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
   // The smallest |R| since the problem last changed (a fixed-point update), and its iteration.
   double best = INFINITY;
   int best_at = 0;
+  // |R| after each iteration since the problem last changed, for the progress rule.
+  std::vector<double> history;
   for (int it = 1; it <= settings_.max_iterations; ++it) {
     ++timings_.iterations;
     Eigen::VectorXd du;
@@ -161,14 +178,23 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     if (changed) {
       best = INFINITY;
       best_at = it;
-    } else if (norm < best) {
-      best = norm;
-      best_at = it;
-    } else if (settings_.stagnation_iterations > 0 && it - best_at >= settings_.stagnation_iterations) {
-      report.failure = fmt::format(
-          "no progress in {} iterations (|R| = {:.3e}, smallest {:.3e} at iteration {}; tolerance {:.3e})",
-          it - best_at, norm, best, best_at, problem.residual_tolerance());
-      return report;
+      history.clear();
+    } else {
+      history.push_back(norm);
+      if (norm < best) {
+        best = norm;
+        best_at = it;
+      } else if (settings_.stagnation_iterations > 0 && it - best_at >= settings_.stagnation_iterations) {
+        report.failure = fmt::format(
+            "no progress in {} iterations (|R| = {:.3e}, smallest {:.3e} at iteration {}; tolerance {:.3e})",
+            it - best_at, norm, best, best_at, problem.residual_tolerance());
+        return report;
+      }
+      report.failure = progress_failure(history, settings_.progress_window, settings_.progress_ratio);
+      if (!report.failure.empty()) {
+        report.failure += fmt::format("; tolerance {:.3e})", problem.residual_tolerance());
+        return report;
+      }
     }
     if (settings_.cancel && settings_.cancel()) {
       report.cancelled = true;

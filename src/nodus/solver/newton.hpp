@@ -32,6 +32,13 @@ struct NewtonSettings {
   /// smallest since the problem last changed (a fixed-point update): a wandering Newton is given up before
   /// max_iterations, and the step is cut back sooner. 0: never (docs/performance.md, "Stagnating Newton").
   int stagnation_iterations = 0;
+  /// > 0: a solve stops as failed at iteration k once the smallest |R| of its last `progress_window`
+  /// iterations is not below `progress_ratio` times the smallest before them (with at least two iterations
+  /// before them, all since the problem last changed): a Newton that swings without converging is given up
+  /// sooner, though it finds a new smallest |R| now and then. 0: never (docs/performance.md, "Failing
+  /// sooner").
+  int progress_window = 0;
+  double progress_ratio = 0.1;  ///< in (0, 1)
 };
 
 struct NewtonReport {
@@ -96,6 +103,7 @@ class NewtonSolver {
   }
   /// Damps the updates of later solves by the line search, or not (a stage's own choice).
   void set_line_search(bool on) { settings_.line_search = on; }
+  void set_progress_window(int iterations) { settings_.progress_window = iterations; }
   const NewtonTimings& timings() const { return timings_; }
 
  private:
