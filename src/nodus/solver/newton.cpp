@@ -29,15 +29,18 @@ class Stopwatch {
 
 /// Why a solve should stop for too little progress (NewtonSettings::progress_window), or "" while it makes
 /// enough. `history`: |R| after each iteration since the problem last changed.
-std::string progress_failure(const std::vector<double>& history, int progress_window, double progress_ratio) {
+std::string progress_failure(const std::vector<double>& history, int progress_window, double progress_ratio,
+                             double tolerance) {
   const auto w = static_cast<std::size_t>(progress_window);
   if (w == 0 || history.size() < w + 2) return {};
   const auto window = history.end() - static_cast<std::ptrdiff_t>(w);
   const double before = *std::min_element(history.begin(), window);
   const double recent = *std::min_element(window, history.end());
   if (recent <= progress_ratio * before) return {};
-  return fmt::format("too little progress (smallest |R| {:.3e} in the last {} iterations, {:.3e} before them",
-                     recent, w, before);
+  return fmt::format(
+      "too little progress (smallest |R| {:.3e} in the last {} iterations, {:.3e} before them; tolerance "
+      "{:.3e})",
+      recent, w, before, tolerance);
 }
 
 }  // namespace
@@ -190,11 +193,9 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
             it - best_at, norm, best, best_at, problem.residual_tolerance());
         return report;
       }
-      report.failure = progress_failure(history, settings_.progress_window, settings_.progress_ratio);
-      if (!report.failure.empty()) {
-        report.failure += fmt::format("; tolerance {:.3e})", problem.residual_tolerance());
-        return report;
-      }
+      report.failure = progress_failure(history, settings_.progress_window, settings_.progress_ratio,
+                                        problem.residual_tolerance());
+      if (!report.failure.empty()) return report;
     }
     if (settings_.cancel && settings_.cancel()) {
       report.cancelled = true;
