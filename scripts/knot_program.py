@@ -409,8 +409,8 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
                     "normal_pass_residual": 0.01},
         # MUMPS: 1.7 times KLU's speed where the knot forms (KLU, faster on the twist, takes that stage); a
         # solve that has not converged in 30 iterations rarely does, and one whose residual has not fallen
-        # tenfold in 10 iterations is given up (a fifth fewer factorisations in the main run; docs/performance.md, "The 3x1
-        # knot", "Failing sooner").
+        # tenfold in 10 iterations is given up (a fifth fewer factorisations in the main run;
+        # docs/performance.md, "The 3x1 knot", "Failing sooner").
         "solver": {"linear_solver": "mumps", "line_search": False, "max_newton_iterations": 30,
                    "easy_iterations": 30, "progress_window": 10},
         "output": {"vtk_every": 10, "checkpoint_every": 50},
