@@ -8,10 +8,10 @@
 // tolerance.
 
 #include <string>
-#include <vector>
 
 #include <gtest/gtest.h>
 
+#include "../verification/step_recorder.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -35,21 +35,15 @@ solver: {linear_solver: cholmod, max_cutbacks: 2)" +
          rule + "}\n";
 }
 
-class Steps : public StepObserver {
- public:
-  std::vector<StepRecord> records;
-  void on_step(const Simulation& /*sim*/, const StepRecord& r) override { records.push_back(r); }
-};
-
 TEST(ProgressWindow, TheLastAttemptAStepIsAllowedKeepsNewtonsWholeBudget) {
   Simulation plain(scenario::parse_scenario(scenario_text(""), "roll.yaml"));
-  Steps plain_steps;
+  verification::StepRecorder plain_steps;
   const RunSummary a = plain.run({&plain_steps});
   ASSERT_TRUE(a.converged) << a.failure;
 
   Simulation ruled(
       scenario::parse_scenario(scenario_text(", progress_window: 1, progress_ratio: 1e-12"), "roll.yaml"));
-  Steps ruled_steps;
+  verification::StepRecorder ruled_steps;
   const RunSummary b = ruled.run({&ruled_steps});
   ASSERT_TRUE(b.converged) << b.failure;
   ASSERT_FALSE(ruled_steps.records.empty());
