@@ -5,6 +5,7 @@
 
 #include <tuple>
 
+#include "nodus/beam/beam.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 
@@ -123,6 +124,68 @@ TEST(SimulationContact, TheSolutionDoesNotDependOnTheLinearSolver) {
   const auto umfpack = run(varying + "umfpack}\n");
   check(umfpack, run(varying + "mumps}\n"), "mumps, varying");
   check(umfpack, run(varying + "klu}\n"), "klu, varying");
+}
+
+/// Rod a along x, 0.45 mm above rod b along y (R = 0.1 mm, delta_prox 0.3 mm: no proximity between them),
+/// both ends of a driven 0.9 mm down in one step, b clamped at both ends: the step takes a's axis through
+/// b's.
+std::string drive_through_scenario(const std::string& contact) {
+  return R"(
+materials:
+  - {name: m, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: a, material: m, radius: 0.1, length: 4, elements: 8, start: [-2, 0, 0.45]}
+  - {name: b, material: m, radius: 0.1, length: 4, elements: 8, start: [0, -2, 0], direction: [0, 1, 0]}
+conditions:
+  - {name: a_start, type: motion, beam: a, at: start}
+  - {name: a_end, type: motion, beam: a, at: end}
+  - {name: b_start, type: clamp, beam: b, at: start}
+  - {name: b_end, type: clamp, beam: b, at: end}
+stages:
+  - name: down
+    steps: 1
+    motions:
+      a_start: {translation: [0, 0, -0.9]}
+      a_end: {translation: [0, 0, -0.9]}
+)" + contact;
+}
+
+/// Height of a's middle above b's middle at the end of a run [mm].
+double height_of_a_over_b(const Simulation& sim) {
+  const model::Model& m = sim.model();
+  const auto z = [&](int beam) { return sim.state()(beam::kNodeDofs * m.beam(beam).node(8) + 2); };
+  return z(0) - z(1);
+}
+
+TEST(SimulationContact, TheCrossingGuardCutsBackAStepThatPassesThrough) {
+  // Without the guard the step converges with a's axis 0.45 mm below b's: the rods passed through each
+  // other, and at both ends of the step they lie beyond delta_prox, where no contact element looks.
+  Simulation through(
+      scenario::parse_scenario(drive_through_scenario("contact: {crossing_guard: false}\n"), "x.yaml"));
+  Recorder unguarded;
+  ASSERT_TRUE(through.run({&unguarded}).converged);
+  ASSERT_EQ(unguarded.records.size(), 1u);
+  EXPECT_NEAR(height_of_a_over_b(through), -0.45, 1e-9);
+  // With it (the default) the step is cut back until the rods come into contact, and a rests on b.
+  Simulation guarded(scenario::parse_scenario(drive_through_scenario("contact: {}\n"), "x.yaml"));
+  Recorder recorder;
+  const RunSummary summary = guarded.run({&recorder});
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  EXPECT_GT(recorder.records.front().cutbacks, 0);
+  EXPECT_GT(recorder.records.back().contact_elements, 0);
+  // The middles 2 R apart, less the penetration (p_max = 0.002 mm) and the sections' contraction under the
+  // contact pressure (the 9-dof beam's directors stretch).
+  EXPECT_NEAR(height_of_a_over_b(guarded), 0.2, 0.01);
+  // No cutback allowed: the run stops and says where the axes crossed, half way through the step.
+  Simulation stopped(
+      scenario::parse_scenario(drive_through_scenario("contact: {}\nsolver: {max_cutbacks: 0}\n"), "x.yaml"));
+  const RunSummary failed = stopped.run({});
+  EXPECT_FALSE(failed.converged);
+  EXPECT_NE(failed.failure.find(
+                "the axes of beams 'a' at s = 2 mm and 'b' at s = 2 mm passed through each other at "
+                "0.5 of the step"),
+            std::string::npos)
+      << failed.failure;
 }
 
 }  // namespace

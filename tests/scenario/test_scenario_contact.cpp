@@ -446,7 +446,7 @@ TEST(ScenarioContactErrors, UnknownKey) {
       "test_point_spacing | matching_length | element_spacing | section_pairing | forces | penalty | "
       "max_penetration | "
       "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
-      "normal_updates | max_normal_iterations | normal_tolerance | normal_pass_residual";
+      "normal_updates | max_normal_iterations | normal_tolerance | normal_pass_residual | crossing_guard";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
   EXPECT_EQ(error_of("contact: {coulomb: 0.2}\n"),

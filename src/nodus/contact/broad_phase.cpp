@@ -1,5 +1,7 @@
 #include "nodus/contact/broad_phase.hpp"
 
+#include <utility>
+
 namespace nodus::contact {
 
 Box3 element_box(const BeamCurves& curves, int element) {
@@ -12,10 +14,23 @@ Box3 element_box(const BeamCurves& curves, int element) {
   return box;
 }
 
-ElementTree::ElementTree(const BeamCurves& curves, const std::vector<int>& elements) : elements_(elements) {
-  boxes_.reserve(elements.size());
-  for (int e : elements) boxes_.push_back(element_box(curves, e));
-  std::vector<int> entries(elements.size());
+namespace {
+
+std::vector<Box3> element_boxes(const BeamCurves& curves, const std::vector<int>& elements) {
+  std::vector<Box3> boxes;
+  boxes.reserve(elements.size());
+  for (int e : elements) boxes.push_back(element_box(curves, e));
+  return boxes;
+}
+
+}  // namespace
+
+ElementTree::ElementTree(const BeamCurves& curves, const std::vector<int>& elements)
+    : ElementTree(elements, element_boxes(curves, elements)) {}
+
+ElementTree::ElementTree(std::vector<int> ids, std::vector<Box3> boxes)
+    : elements_(std::move(ids)), boxes_(std::move(boxes)) {
+  std::vector<int> entries(elements_.size());
   for (std::size_t i = 0; i < entries.size(); ++i) entries[i] = static_cast<int>(i);
   tree_.init(entries.begin(), entries.end(), boxes_.begin(), boxes_.end());
 }

@@ -21,6 +21,8 @@ class ElementTree {
  public:
   /// Builds the hierarchy over `elements` (global element indices).
   ElementTree(const BeamCurves& curves, const std::vector<int>& elements);
+  /// Builds the hierarchy over entries `ids` with their own `boxes` (as many).
+  ElementTree(std::vector<int> ids, std::vector<Box3> boxes);
 
   /// Appends to `out` the elements whose box meets `box`.
   void query(const Box3& box, std::vector<int>& out) const;

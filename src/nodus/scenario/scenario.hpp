@@ -670,6 +670,8 @@ struct ContactSettings {
   /// Nested loop 3: its Newton solves stop at |R| <= this fraction of the total normal force, the last one at
   /// the residual tolerance; 0: every solve to the residual tolerance (the paper), >= 0.
   double normal_pass_residual = 0.0;
+  /// A converged step in which two axes crossed each other is refused and cut back (contact::find_crossing).
+  bool crossing_guard = true;
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<ContactSettings>> keys();
@@ -796,6 +798,10 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "stops once |R| <= this fraction of the total normal force, and the solve that ends "
               "the loop goes on to the residual tolerance. 0: every solve to the residual tolerance, "
               "as in the paper (docs/contact.md)"),
+      K::flag("contact.crossing_guard", &ContactSettings::crossing_guard,
+              "refuse a converged step in which the axes of two contact beams, or of two parts of "
+              "one more than separation_distance apart along it, passed through each other, and cut "
+              "it back (docs/contact.md)"),
   };
   return keys;
 }

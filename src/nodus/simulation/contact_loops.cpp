@@ -108,6 +108,15 @@ contact::Clearance ContactLoops::clearance() const {
                                 prm.proximity_distance, 9, parallel);
 }
 
+std::optional<contact::Crossing> ContactLoops::crossing() const {
+  if (!laws_.crossing_guard || beams_.empty()) return std::nullopt;
+  const contact::DetectionParameters prm = contact::resolve_parameters(detection_, model_, beams_);
+  int elements = 0;
+  for (int b : beams_) elements += model_.beam(b).num_elements();
+  return contact::find_crossing(model_, problem_.committed_state(), problem_.state(), beams_,
+                                prm.separation_distance, elements >= 1000);
+}
+
 contact::ContactGeometry ContactLoops::detect() {
   if (beams_.empty()) return {};
   const auto start = std::chrono::steady_clock::now();

@@ -15,6 +15,7 @@
 
 #include "nodus/contact/clearance.hpp"
 #include "nodus/contact/contact_mechanics.hpp"
+#include "nodus/contact/crossing.hpp"
 #include "nodus/contact/detection.hpp"
 #include "nodus/model/model.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
@@ -50,6 +51,8 @@ struct ContactLawSettings {
   /// Nested loop 3: the Newton solves between updates stop at |R| <= this fraction of the total normal force
   /// (contact.normal_pass_residual); 0: each to the residual tolerance.
   double normal_pass_residual = 0.0;
+  /// Refuse a converged step in which two axes crossed (contact.crossing_guard; ContactLoops::crossing()).
+  bool crossing_guard = true;
 };
 
 /// What the loops did in the last step, and the contact forces at its end.
@@ -97,6 +100,9 @@ class ContactLoops {
   /// The smallest clearance between the surfaces of the contact beams in the current state
   /// (contact::min_clearance, pairs within delta_prox, one beam's parts more than delta_separ apart).
   contact::Clearance clearance() const;
+  /// Whether the axes of the contact beams crossed between the committed state and the current one
+  /// (contact::find_crossing, one beam's parts more than delta_separ apart); nothing if the guard is off.
+  std::optional<contact::Crossing> crossing() const;
   double detection_seconds() const { return detection_seconds_; }
 
  private:
