@@ -4,6 +4,7 @@
 #include <cmath>
 #include <limits>
 #include <numbers>
+#include <stdexcept>
 #include <vector>
 
 #include "nodus/beam/shape_functions.hpp"
@@ -100,6 +101,27 @@ HelixFit fit_helix(const model::Model& model, const Eigen::VectorXd& x, int b, c
     fit.rate = ((z.array() - zm) * (t.array() - tm)).sum() / (z.array() - zm).square().sum();
   }
   return fit;
+}
+
+double winding_about_centre(const model::Model& model, const Eigen::VectorXd& x, int b,
+                            const std::vector<int>& beams, const Vec3& axis) {
+  const beam::Beam& fibre = model.beam(b);
+  for (int other : beams)
+    if (model.beam(other).num_nodes() != fibre.num_nodes())
+      throw std::invalid_argument("winding_about_centre: beams '" + fibre.name() + "' and '" +
+                                  model.beam(other).name() + "' have different numbers of nodes");
+  const Vec3 e1 = axis.unitOrthogonal(), e2 = axis.cross(e1);
+  double total = 0.0, previous = 0.0;
+  for (int n = 0; n < fibre.num_nodes(); ++n) {
+    Vec3 centre = Vec3::Zero();
+    for (int other : beams) centre += x.segment<3>(model.node_dof(model.beam(other).node(n)));
+    centre /= static_cast<double>(beams.size());
+    const Vec3 offset = x.segment<3>(model.node_dof(fibre.node(n))) - centre;
+    const double a = std::atan2(offset.dot(e2), offset.dot(e1));
+    if (n > 0) total += std::remainder(a - previous, 2.0 * std::numbers::pi);  // the turn, in [-pi, pi]
+    previous = a;
+  }
+  return total;
 }
 
 }  // namespace nodus::analysis

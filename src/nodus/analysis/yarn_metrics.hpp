@@ -2,6 +2,8 @@
 /// Checks and measures of twisted yarns and strands: how near any two fibres' axes come (nothing may pass
 /// through anything), and the helix that a fibre's centreline follows about a yarn axis. Units mm.
 
+#include <vector>
+
 #include <Eigen/Core>
 
 #include "nodus/model/model.hpp"
@@ -31,5 +33,15 @@ struct HelixFit {
 };
 HelixFit fit_helix(const model::Model& model, const Eigen::VectorXd& x, int beam,
                    const Eigen::Vector3d& origin, const Eigen::Vector3d& axis, double from, double to);
+
+/// How far fibre `beam` winds about the centre of the fibres `beams`, the mean of their nodes of equal index
+/// (each must have as many nodes as `beam`), seen along `axis` (unit): the angle of the fibre's offset from
+/// that centre, projected on the plane normal to `axis`, followed node by node from the first node to the
+/// last [rad], positive anticlockwise about `axis`. The count of turns is exact as long as the offset turns
+/// by less than half a turn from one node to the next. Fibres whose ends are held cannot change their
+/// winding by whole turns without passing through one another: a yarn twisted by turning its end bodies by
+/// an angle winds by that angle (tests/long/test_knot_3x1.cpp).
+double winding_about_centre(const model::Model& model, const Eigen::VectorXd& x, int beam,
+                            const std::vector<int>& beams, const Eigen::Vector3d& axis);
 
 }  // namespace nodus::analysis

@@ -500,7 +500,14 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
             record.penetration_ratio = c.penetration_ratio;
             record.normal_force = c.normal_force;
             record.tangential_force = c.tangential_force;
-            record.min_clearance = loops->clearance().value;
+            const contact::Clearance clearance = loops->clearance();
+            record.min_clearance = clearance.value;
+            if (clearance.beam_i >= 0)
+              spdlog::debug(
+                  "smallest clearance {:.4g} mm, between beams '{}' at s = {:.6g} mm and '{}' at s = {:.6g} "
+                  "mm",
+                  clearance.value, model_.beam(clearance.beam_i).name(), clearance.s_i,
+                  model_.beam(clearance.beam_j).name(), clearance.s_j);
             record.slipping = c.slipping;
             record.loops_converged = c.loops_converged();
             if (!record.loops_converged && !warned_capped) {
