@@ -132,6 +132,30 @@ def mean_centreline(fibres):
     return {c: np.mean([f[c] for f in fibres.values()], axis=0) for c in ("s", "x", "y", "z")}
 
 
+def winding_deg(fibres):
+    """{name: how far the fibre winds about the centre of the fibres (the mean of their nodes of equal index),
+    seen along the chord of that centre from its first node to its last, followed node by node [degrees]}
+    (analysis::winding_about_centre), or None if the fibres differ in their numbers of nodes. Fibres whose
+    ends are held change it by whole turns only by passing through one another: after `twist` it is the end
+    bodies' turn (docs/knot_3x1.md)."""
+    if len({len(f["s"]) for f in fibres.values()}) != 1:
+        return None
+    points = {name: np.column_stack([f["x"], f["y"], f["z"]]) for name, f in fibres.items()}
+    centre = np.mean(list(points.values()), axis=0)
+    axis = centre[-1] - centre[0]
+    axis /= np.linalg.norm(axis)
+    e1 = np.cross(axis, [1.0, 0.0, 0.0] if abs(axis[0]) < 0.9 else [0.0, 1.0, 0.0])
+    e1 /= np.linalg.norm(e1)
+    e2 = np.cross(axis, e1)
+    result = {}
+    for name, p in points.items():
+        offset = p - centre
+        angle = np.arctan2(offset @ e2, offset @ e1)
+        turns = np.remainder(np.diff(angle) + np.pi, 2 * np.pi) - np.pi   # each step's turn, in [-pi, pi)
+        result[name] = float(np.degrees(turns.sum()))
+    return result
+
+
 def load_state(folder, name, friction, yarn):
     fibres = read_fibres(folder / "final_nodes.csv", yarn)
     return YarnState(name, friction, mean_centreline(fibres), kr.read_contact(folder / "contact_final.csv"),
@@ -376,6 +400,11 @@ def report(run_dir, out_dir, yarn, separation):
     except kv.ViewError as e:
         print(f"note: no 3D views: {e}")
 
+    for path in sorted((run_dir / "stages").glob("*_twist_nodes.csv")):
+        winding = winding_deg(read_fibres(path, yarn))
+        if winding:
+            print(f"{path.name}: the fibres wind about the yarn's centre by " +
+                  ", ".join(f"{short_name(name, yarn)} {w:.1f}" for name, w in winding.items()) + " degrees")
     print(transposed_markdown(rows, columns))
     print()
     print("written:")

@@ -331,6 +331,27 @@ class KnotThreeByOneReportTest(unittest.TestCase):
         for name in FIBRES:
             self.assertWritten("mu_0.20", f"self_distance_{name[5:]}_mm", 0.68)
 
+    # the twist's winding -------------------------------------------------------------------------------
+    def test_winding_of_plied_helices(self):
+        """Three fibres on helices about an axis along (0.6, 0, 0.8), a third of a turn apart, winding by a
+        known angle over 201 nodes: the winding about their centre is that angle, in its sense."""
+        s = np.linspace(0.0, 6.0, 201)
+        axis = np.array([0.6, 0.0, 0.8])
+        e1 = np.array([0.0, 1.0, 0.0])
+        e2 = np.cross(axis, e1)                      # (e1, e2, axis) right-handed
+        for degrees in (1030.0, -1030.0, 90.0, 0.0):
+            fibres = {}
+            for k, name in enumerate(FIBRES):
+                angle = np.radians(degrees) * s / 6.0 + 2 * np.pi * k / 3
+                p = np.outer(s, axis) + RHO * (np.outer(np.cos(angle), e1) + np.outer(np.sin(angle), e2))
+                fibres[name] = {"s": s, "x": p[:, 0], "y": p[:, 1], "z": p[:, 2]}
+            winding = k3.winding_deg(fibres)
+            for name in FIBRES:
+                with self.subTest(degrees=degrees, fibre=name):
+                    self.assertAlmostEqual(winding[name], degrees, delta=1e-9)
+        fibres[FIBRES[0]] = {c: v[:-1] for c, v in fibres[FIBRES[0]].items()}   # one node fewer
+        self.assertIsNone(k3.winding_deg(fibres))
+
     # outputs -----------------------------------------------------------------------------------------
     def test_figures_written(self):
         out = self.run_dir / "report"
