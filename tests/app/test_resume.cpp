@@ -147,6 +147,28 @@ TEST(Resume, FromIntermediateCheckpoints) {
   }
 }
 
+TEST(Resume, InsideStagesWithTheirOwnParticles) {
+  // drag and back take their own particles (stages[].particles), lift the contact section's again: a run
+  // resumed inside drag (from step 6) or inside back (from step 8) places them as the run never stopped.
+  std::string text = replaced(kDrag, "  contact_csv: true\n", "  contact_csv: true\n  checkpoint_every: 2\n");
+  text = replaced(text, "  - name: drag\n    steps: 4\n",
+                  "  - name: drag\n    steps: 4\n    particles: facing\n");
+  text = replaced(text, "  - name: back\n    steps: 3\n",
+                  "  - name: back\n    steps: 3\n    particles: centres\n");
+  const fs::path scenario = write("drag_particles.yaml", text);
+  const fs::path reference = reference_run(scenario, "drag_particles");
+  for (const int stop : {6, 9}) {
+    SCOPED_TRACE("stop " + std::to_string(stop));
+    const fs::path out = scratch() / ("drag_particles_" + std::to_string(stop));
+    fs::remove_all(out);
+    const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+    EXPECT_EQ(run_nodus(run + " --stop-after-steps " + std::to_string(stop)).status, 3);
+    const Result r = run_nodus(run + " --resume");
+    EXPECT_EQ(r.status, 0) << r.err;
+    expect_same_results(reference, out);
+  }
+}
+
 TEST(Resume, EqualsTheUninterruptedRunWithEachLinearSolver) {
   // A resumed run analyses its tangent again at its first step, where the run never stopped kept its analysis
   // of the same pattern (CHOLMOD and MUMPS, whose analyses read the pattern alone) or analysed again

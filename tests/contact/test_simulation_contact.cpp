@@ -188,5 +188,65 @@ TEST(SimulationContact, TheCrossingGuardCutsBackAStepThatPassesThrough) {
       << failed.failure;
 }
 
+/// A beam along x (R = 0.1 mm, held at its ends, free to turn about its axis) and a rigid tool across it
+/// along y (R = 0.2 mm) pressed onto it (`press`), then dragged across it with friction, which turns the
+/// beam's sections about x (`drag`); each stage takes `press_line` and `drag_line` (its own particles, or
+/// nothing), the contact section the particles `particles`.
+std::string press_and_drag_scenario(const std::string& press_line, const std::string& drag_line,
+                                    const std::string& particles) {
+  return R"(
+materials:
+  - {name: m, young_modulus: 4000, poisson_ratio: 0.3}
+beams:
+  - {name: beam, material: m, radius: 0.1, length: 10, elements: 8, start: [-5, 0, 0], director1: [0, 1, 0]}
+  - {name: tool, material: m, radius: 0.2, length: 2, elements: 2, start: [0, -1, 0.31], direction: [0, 1, 0],
+     director1: [1, 0, 0]}
+conditions:
+  - {name: left, type: clamp, beam: beam, at: start, dofs: [position, g1z]}
+  - {name: right, type: clamp, beam: beam, at: end, dofs: [y, z]}
+  - {name: press, type: rigid, beam: tool}
+stages:
+  - name: press
+    steps: 2
+)" + press_line +
+         R"(    motions:
+      press: {translation: [0, 0, -0.1]}
+  - name: drag
+    steps: 3
+)" + drag_line +
+         R"(    motions:
+      press: {translation: [0, 0.3, -0.1]}
+solver: {linear_solver: umfpack}
+contact: {self_contact: false, friction: 0.3, friction_tangent: varying, particles: )" +
+         particles + "}\n";
+}
+
+TEST(SimulationContact, AStageTakesItsOwnParticles) {
+  const auto run = [](const std::string& press_line, const std::string& drag_line,
+                      const std::string& particles) {
+    Simulation sim(
+        scenario::parse_scenario(press_and_drag_scenario(press_line, drag_line, particles), "p.yaml"));
+    Recorder recorder;
+    const RunSummary summary = sim.run({&recorder});
+    EXPECT_TRUE(summary.converged) << press_line << drag_line << particles << ": " << summary.failure;
+    EXPECT_GT(recorder.records.back().contact_elements, 0);
+    return std::make_pair(summary.newton_iterations, Eigen::VectorXd(sim.state()));
+  };
+  // The stages' own particles give the run of the contact section that says the same, to the last bit, and a
+  // stage without its own takes the contact section's again after one with.
+  const auto facing_then_centres = run("", "    particles: centres\n", "facing");
+  const auto same = run("    particles: facing\n", "", "centres");
+  EXPECT_EQ(same.first, facing_then_centres.first);
+  EXPECT_EQ((same.second - facing_then_centres.second).lpNorm<Eigen::Infinity>(), 0.0);
+  // The choice matters here: the sections turn under the friction moment, and the fixed particles, carried
+  // with them, are not where the facing ones are; at the crossing the centres' direction is not the normal.
+  const auto facing = run("", "", "facing");
+  const auto fixed_then_facing = run("    particles: fixed\n", "", "facing");
+  const auto facing_then_fixed = run("", "    particles: fixed\n", "facing");
+  EXPECT_GT((facing.second - facing_then_centres.second).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_GT((facing.second - fixed_then_facing.second).lpNorm<Eigen::Infinity>(), 1e-9);
+  EXPECT_GT((facing.second - facing_then_fixed.second).lpNorm<Eigen::Infinity>(), 1e-9);
+}
+
 }  // namespace
 }  // namespace nodus::simulation

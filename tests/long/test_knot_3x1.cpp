@@ -1,6 +1,6 @@
 // The 3x1 multifilament overhand knot of Durville 2012, Sect. 7.3 (examples/knot_3x1.yaml as it is: three
 // fibres of 100 elements twisted into a yarn, tied, tightened at 0.5 N, then released with mu = 0.3). About
-// 11 minutes on 2 cores: it carries the label `slow`, which CI's 30 minutes leave out (`ctest -L slow` runs
+// 5 to 8 minutes on 2 cores: it carries the label `slow`, which CI's 30 minutes leave out (`ctest -L slow` runs
 // it; no coarser variant is cheaper, docs/knot_3x1.md). The knot is checked, not assumed:
 // - each fibre's centreline closed far away, and the yarn's mean centreline, has the Alexander polynomial of
 //   the trefoil, 1 - t + t^2, once tightened and again after the force has been released with mu = 0.3;

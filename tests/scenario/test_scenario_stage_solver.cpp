@@ -1,7 +1,8 @@
 // stages[].linear_solver: a stage's own sparse direct solver. Read in the main stages and the branches', it
 // falls back to solver.linear_solver; cholmod is refused where the tangent is not symmetric, and any choice
 // where solver.linear_solver is petsc (whose ranks share the rows). The reader names the line of the key;
-// validate() the same for a scenario built in code.
+// validate() the same for a scenario built in code. stages[].particles: a stage's own contact particles,
+// falling back to contact.particles, refused without a contact section.
 
 #include <string>
 
@@ -117,6 +118,38 @@ TEST(StageLinearSolver, OnlyTheDeclaredChoices) {
       error_of(text("    linear_solver: petsc", "", "")),
       "s.yaml:12: stages[1].linear_solver: expected one of solver | cholmod | umfpack | mumps | klu, got "
       "petsc");
+}
+
+TEST(StageParticles, ReadInStagesAndBranchesAndFallingBackToTheContactSection) {
+  const Scenario s = parse_scenario(
+      text("    particles: facing", "        particles: centres", "contact: {particles: fixed}\n"), "s.yaml");
+  EXPECT_EQ(s.stages[0].particles, StageParticles::contact);
+  EXPECT_EQ(s.stages[1].particles, StageParticles::facing);
+  ASSERT_EQ(s.branches.size(), 1U);
+  EXPECT_EQ(s.branches[0].stages[0].particles, StageParticles::centres);
+  EXPECT_EQ(parse_scenario(text("    particles: fixed", "", "contact: {particles: centres}\n"), "s.yaml")
+                .stages[1]
+                .particles,
+            StageParticles::fixed);
+  EXPECT_EQ(
+      error_of(text("    particles: sideways", "", "contact: {}\n")),
+      "s.yaml:12: stages[1].particles: expected one of contact | fixed | facing | centres, got sideways");
+}
+
+TEST(StageParticles, RefusedWithoutAContactSection) {
+  const std::string expected = "expected no particles in a stage without a contact section, got facing";
+  EXPECT_EQ(error_of(text("    particles: facing", "", "")), "s.yaml:12: stages[1].particles: " + expected);
+  EXPECT_EQ(error_of(text("", "        particles: facing", "")),
+            "s.yaml:19: branches[0].stages[0].particles: " + expected);
+  // validate(): the same message, without the line.
+  Scenario built = parse_scenario(text("", "", ""), "s.yaml");
+  built.stages[1].particles = StageParticles::facing;
+  try {
+    validate(built);
+    ADD_FAILURE() << "validate() accepted particles without a contact section";
+  } catch (const ScenarioError& error) {
+    EXPECT_EQ(std::string(error.what()), "s.yaml: stages[1].particles: " + expected);
+  }
 }
 
 }  // namespace

@@ -346,7 +346,7 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
   // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 6, Keyframe 1, SolverSettings 16,
   // ContactSettings 22.
-  EXPECT_EQ(checked, 53);
+  EXPECT_EQ(checked, 54);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();

@@ -51,6 +51,11 @@ class ContactTerm final : public model::Term {
   /// Whether the normals follow the state, linearised (ResponseOptions::linearized_normal), from the next
   /// evaluation on.
   void set_linearized_normal(bool on) { options_.linearized_normal = on; }
+  /// Where the forces act (ResponseOptions::facing_particles and centre_facing), from the next evaluation on.
+  void set_particles(bool facing, bool centre_facing) {
+    options_.facing_particles = facing;
+    options_.centre_facing = centre_facing;
+  }
 
   ContactGeometry& geometry() { return geometry_; }
   const ContactGeometry& geometry() const { return geometry_; }

@@ -100,10 +100,11 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
     line(fmt::format("  - name: {}", yaml_name(stage.name)));
     const std::string item_indent = std::string(indent) + "    ";
     describe_keys(out, StageSpec::keys(), stage, item_indent, [&](const Key<StageSpec>& key) {
-      // The drag's keys only where there is a drag, a stage's own line search and linear solver only where
-      // it has one.
+      // The drag's keys only where there is a drag, a stage's own line search, linear solver and particles
+      // only where it has them.
       if (key.path == "stages[].line_search") return stage.line_search == StageSwitch::solver;
       if (key.path == "stages[].linear_solver") return stage.linear_solver == StageLinearSolver::solver;
+      if (key.path == "stages[].particles") return stage.particles == StageParticles::contact;
       return key.number &&
              (key.number == &StageSpec::stabilization || key.number == &StageSpec::stabilization_end) &&
              stage.stabilization <= 0.0;

@@ -157,6 +157,8 @@ std::vector<StageSpec> read_stages(const Reader& reader, const Field& list, cons
     stage.name = reader.name(name);
     stage_names.add(reader, name, stage.name, "stages");
     read_keys(reader, map, StageSpec::keys(), stage);
+    if (const auto value = map.get("particles"); value && !contact.enabled)
+      reader.fail(*value, kStageParticlesExpected);
     if (const auto value = map.get("stabilization_end")) {
       if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
         reader.fail(*value, kStabilizationEndExpected);

@@ -32,6 +32,7 @@ constexpr std::string_view kSeparationDistanceExpected =
     "> proximity_distance (neighbouring parts of a beam would be paired)";
 constexpr std::string_view kStabilizationEndExpected =
     "0 when stabilization is 0 (the decay is geometric from stabilization)";
+constexpr std::string_view kStageParticlesExpected = "no particles in a stage without a contact section";
 // A bind holds the translations of several bodies together by a penalty, from activation to the end.
 constexpr std::string_view kBindBodiesExpected = "two or more bodies for a bind condition";
 constexpr std::string_view kBindDofsExpected = "dofs among position | x | y | z for a bind condition";

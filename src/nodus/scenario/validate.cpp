@@ -398,6 +398,12 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
     if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
       check.fail(at + ".stabilization_end", kStabilizationEndExpected,
                  format_number(stage.stabilization_end));
+    if (stage.particles != StageParticles::contact && !s.contact.enabled) {
+      const auto keys = StageSpec::keys();
+      const auto key = std::find_if(keys.begin(), keys.end(),
+                                    [](const Key<StageSpec>& k) { return k.path == "stages[].particles"; });
+      check.fail(at + ".particles", kStageParticlesExpected, value_text(*key, stage));
+    }
     check_condition_list(check, s, stage.activate, at, "activate");
     check_condition_list(check, s, stage.release, at, "release");
     for (std::size_t i = 0; i < stage.release.size(); ++i) {

@@ -94,6 +94,13 @@ class ContactLoops {
 
   /// The beams that take part in contact from the next step on (none: no contact).
   void set_beams(std::vector<int> beams) { beams_ = std::move(beams); }
+  /// Where the contact forces act from the next evaluation on, and where detection and the normal updates
+  /// place the particles (ContactLawSettings::facing_particles, centre_facing; stages[].particles).
+  void set_particles(bool facing, bool centre_facing) {
+    laws_.facing_particles = facing;
+    laws_.centre_facing = centre_facing;
+    problem_.set_contact_particles(facing, centre_facing);
+  }
   /// Solves the current load step of `problem_` from its current unknowns.
   solver::NewtonReport solve();
   const ContactStepStats& stats() const { return stats_; }

@@ -119,6 +119,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   }
   /// The contact normals follow the state, linearised in the tangent, or stay as the contact loops set them.
   void set_contact_normals_follow(bool on) { contact_->set_linearized_normal(on); }
+  /// Where the contact forces act from the next evaluation on (ContactTerm::set_particles).
+  void set_contact_particles(bool facing, bool centre_facing) {
+    contact_->set_particles(facing, centre_facing);
+  }
   contact::ContactGeometry& contact_geometry() { return contact_->geometry(); }
   const contact::ContactGeometry& contact_geometry() const { return contact_->geometry(); }
   std::vector<double>& zone_penalty() { return contact_->zone_penalty(); }

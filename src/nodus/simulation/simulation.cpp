@@ -474,6 +474,15 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     newton.set_line_search(stage.line_search == scenario::StageSwitch::solver
                                ? scenario_.solver.line_search
                                : stage.line_search == scenario::StageSwitch::on);
+    // A stage's own particles (stages[].particles), also when a run resumes inside the stage.
+    if (loops) {
+      const scenario::StageParticles own = stage.particles;
+      if (own == scenario::StageParticles::contact)
+        loops->set_particles(laws_.facing_particles, laws_.centre_facing);
+      else
+        loops->set_particles(own != scenario::StageParticles::fixed,
+                             own == scenario::StageParticles::centres);
+    }
     bool warned_capped = false;  // a step of this stage ended a contact loop at its cap (warned once)
     for (StepObserver* o : observers) o->on_stage(*this, s);
 
