@@ -273,8 +273,11 @@ YARN_CLAMP_Z = 0.12  # height of the loop's far point [mm]
 YARN_CLAMP_AWAY = 0.45
 YARN_CLAMP_DISTANCE = 0.18  # the yarn's outer radius + the clamp's
 YARN_THREAD_DURATION = 4.0  # s: 4 times slower than `loop`, so that the drag presses the yarn less
+# End B's axis at 0.3 turns only part of the way towards +y: turned fully (0, 1, -0.1) while end B dives, the
+# yarn bent sharply at its rigid end, fibre r1's last element shortened to 0.85 h and its end section overlapped
+# fibre r3's by 3.1 p_max (docs/knot_3x1.md, "End B's dive").
 YARN_THREAD = [  # (fraction of `thread`, position of end B [mm], its axis)
-    (0.15, [-1.0, -0.95, -0.25], [0, -0.3, -1]), (0.3, [-0.9, -0.6, -0.45], [0, 1, -0.1]),
+    (0.15, [-1.0, -0.95, -0.25], [0, -0.3, -1]), (0.3, [-0.9, -0.6, -0.45], [0, 0.6, -0.8]),
     (0.5, [-0.68, 0.38, -0.45], [0, 1, 0.3]), (0.65, [-0.62, 0.42, 0.45], [0, 0, 1]),
     (0.8, [-0.2, -0.1, 0.45], [1, -0.5, 0]), (1.0, [0.4, -0.3, 0.3], [1, 0, 0])]
 
