@@ -5,6 +5,7 @@
 // falling back to contact.particles, refused without a contact section.
 
 #include <string>
+#include <utility>
 
 #include <gtest/gtest.h>
 
@@ -127,10 +128,16 @@ TEST(StageParticles, ReadInStagesAndBranchesAndFallingBackToTheContactSection) {
   EXPECT_EQ(s.stages[1].particles, StageParticles::facing);
   ASSERT_EQ(s.branches.size(), 1U);
   EXPECT_EQ(s.branches[0].stages[0].particles, StageParticles::centres);
+  // As the run takes them: {facing, centres}, the contact section's (fixed) where the stage has none.
+  EXPECT_EQ(stage_particles(s.stages[0], s.contact), std::make_pair(false, false));
+  EXPECT_EQ(stage_particles(s.stages[1], s.contact), std::make_pair(true, false));
+  EXPECT_EQ(stage_particles(s.branches[0].stages[0], s.contact), std::make_pair(true, true));
   EXPECT_EQ(parse_scenario(text("    particles: fixed", "", "contact: {particles: centres}\n"), "s.yaml")
                 .stages[1]
                 .particles,
             StageParticles::fixed);
+  const Scenario centres = parse_scenario(text("", "", "contact: {particles: centres}\n"), "s.yaml");
+  EXPECT_EQ(stage_particles(centres.stages[1], centres.contact), std::make_pair(true, true));
   EXPECT_EQ(
       error_of(text("    particles: sideways", "", "contact: {}\n")),
       "s.yaml:12: stages[1].particles: expected one of contact | fixed | facing | centres, got sideways");

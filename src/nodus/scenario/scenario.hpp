@@ -9,6 +9,7 @@
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <utility>
 #include <vector>
 
 #include <Eigen/Core>
@@ -816,6 +817,14 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "it back (docs/contact.md)"),
   };
   return keys;
+}
+
+/// Where the contact forces act in `stage`: its own particles, or contact.particles; as ContactSettings holds
+/// them, {facing_particles, centre_facing}. StageParticles lists contact.particles' choices shifted by one.
+inline std::pair<bool, bool> stage_particles(const StageSpec& stage, const ContactSettings& contact) {
+  const int choice = static_cast<int>(stage.particles) - 1;
+  if (choice < 0) return {contact.facing_particles, contact.centre_facing};
+  return {choice >= 1, choice == 2};
 }
 
 /// A run that continues from the state at the end of one stage of Scenario::stages (key `branches`).

@@ -388,22 +388,20 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
     const StageSpec& stage = stages[k];
     const std::string at = fmt::format("{}[{}]", prefix, k);
     check.keys(StageSpec::keys(), stage, "stages[]", at);
-    if (const std::string_view expected = stage_solver_expected(stage, s); !expected.empty()) {
+    // The written value of one of the stage's keys, for a message.
+    const auto value_of = [&stage](std::string_view path) {
       const auto keys = StageSpec::keys();
-      const auto key = std::find_if(keys.begin(), keys.end(), [](const Key<StageSpec>& k) {
-        return k.path == "stages[].linear_solver";
-      });
-      check.fail(at + ".linear_solver", expected, value_text(*key, stage));
-    }
+      return value_text(
+          *std::find_if(keys.begin(), keys.end(), [path](const Key<StageSpec>& k) { return k.path == path; }),
+          stage);
+    };
+    if (const std::string_view expected = stage_solver_expected(stage, s); !expected.empty())
+      check.fail(at + ".linear_solver", expected, value_of("stages[].linear_solver"));
     if (stage.stabilization_end > 0.0 && stage.stabilization == 0.0)
       check.fail(at + ".stabilization_end", kStabilizationEndExpected,
                  format_number(stage.stabilization_end));
-    if (stage.particles != StageParticles::contact && !s.contact.enabled) {
-      const auto keys = StageSpec::keys();
-      const auto key = std::find_if(keys.begin(), keys.end(),
-                                    [](const Key<StageSpec>& k) { return k.path == "stages[].particles"; });
-      check.fail(at + ".particles", kStageParticlesExpected, value_text(*key, stage));
-    }
+    if (stage.particles != StageParticles::contact && !s.contact.enabled)
+      check.fail(at + ".particles", kStageParticlesExpected, value_of("stages[].particles"));
     check_condition_list(check, s, stage.activate, at, "activate");
     check_condition_list(check, s, stage.release, at, "release");
     for (std::size_t i = 0; i < stage.release.size(); ++i) {

@@ -476,12 +476,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                                : stage.line_search == scenario::StageSwitch::on);
     // A stage's own particles (stages[].particles), also when a run resumes inside the stage.
     if (loops) {
-      const scenario::StageParticles own = stage.particles;
-      if (own == scenario::StageParticles::contact)
-        loops->set_particles(laws_.facing_particles, laws_.centre_facing);
-      else
-        loops->set_particles(own != scenario::StageParticles::fixed,
-                             own == scenario::StageParticles::centres);
+      const auto [facing, centres] = scenario::stage_particles(stage, scenario_.contact);
+      loops->set_particles(facing, centres);
     }
     bool warned_capped = false;  // a step of this stage ended a contact loop at its cap (warned once)
     for (StepObserver* o : observers) o->on_stage(*this, s);
