@@ -159,13 +159,8 @@ TEST(Resume, InsideStagesWithTheirOwnParticles) {
   const fs::path reference = reference_run(scenario, "drag_particles");
   for (const int stop : {6, 9}) {
     SCOPED_TRACE("stop " + std::to_string(stop));
-    const fs::path out = scratch() / ("drag_particles_" + std::to_string(stop));
-    fs::remove_all(out);
-    const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
-    EXPECT_EQ(run_nodus(run + " --stop-after-steps " + std::to_string(stop)).status, 3);
-    const Result r = run_nodus(run + " --resume");
-    EXPECT_EQ(r.status, 0) << r.err;
-    expect_same_results(reference, out);
+    expect_same_results(reference,
+                        interrupted_run(scenario, "drag_particles_" + std::to_string(stop), {stop}));
   }
 }
 
