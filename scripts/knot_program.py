@@ -365,11 +365,12 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
     unclamp = clamp_motions({k: closed[k] + [0, 0, z * YARN_CLAMP_AWAY] for k, z in side.items()})
 
     program = [
-        # KLU on the twist: about 10 % faster than MUMPS there (the same steps and twisted state), MUMPS once
-        # the knot forms (docs/performance.md, "A linear solver per stage" and "KLU or MUMPS for the whole
-        # twist, again"). Facing particles on the twist, as examples/yarn_3x1_twist.yaml: with the centres
-        # that the threading needs (docs/contact.md) the twist took twice the steps (docs/knot_3x1.md).
-        {"name": "twist", "steps": 140, "linear_solver": "klu", "particles": "facing", "motions": twist_motions},
+        # MUMPS throughout: with the AMD ordering and the one thread it takes below 10,000 unknowns, the twist
+        # runs faster than on KLU, which it used to take for being 10 % faster than MUMPS with PORD
+        # (docs/performance.md, "MUMPS for small tangents"). Facing particles on the twist, as
+        # examples/yarn_3x1_twist.yaml: with the centres that the threading needs (docs/contact.md) the twist
+        # took twice the steps (docs/knot_3x1.md).
+        {"name": "twist", "steps": 140, "particles": "facing", "motions": twist_motions},
         {"name": "loop", "steps": 60, "stabilization": stabilization,
          "release": twist_ends, "activate": [f"end_b{k}" for k in range(1, m + 1)],
          "motions": per_body(loop)},
@@ -411,7 +412,7 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
         **({"branches": [branch(mu) for mu in YARN_FRICTIONS]} if not stages or "settle" in stages else {}),
         "contact": {"friction": 0.3, "friction_tangent": "varying", "max_detections": 2, "particles": "centres",
                     "normal_pass_residual": 0.01},
-        # MUMPS: 1.7 times KLU's speed where the knot forms (KLU, faster on the twist, takes that stage); a
+        # MUMPS: 1.7 times KLU's speed where the knot forms, and faster on the twist too (above); a
         # solve that has not converged in 30 iterations rarely does, and one whose residual has not fallen
         # tenfold in 10 iterations is given up (a fifth fewer factorisations in the main run;
         # docs/performance.md, "The 3x1 knot", "Failing sooner").

@@ -10,6 +10,7 @@
 #include <vector>
 
 #include <fmt/core.h>
+#include <omp.h>
 #include <Eigen/CholmodSupport>
 #include <Eigen/UmfPackSupport>
 #include <unsupported/Eigen/IterativeSolvers>
@@ -57,11 +58,28 @@ void use_metis(Solver& solver) {
   c.print = 0;  // a matrix that is not positive definite is expected; it is reported through info()
 }
 
+/// While it lives, one OpenMP thread where `one` holds: OpenMP's OpenBLAS, which Debian's MUMPS calls for
+/// its dense kernels, then runs its calls on one thread. The number of threads before is restored after.
+class OneOpenMpThread {
+ public:
+  explicit OneOpenMpThread(bool one) : saved_(one ? omp_get_max_threads() : 0) {
+    if (one) omp_set_num_threads(1);
+  }
+  ~OneOpenMpThread() {
+    if (saved_ > 0) omp_set_num_threads(saved_);
+  }
+  OneOpenMpThread(const OneOpenMpThread&) = delete;
+  OneOpenMpThread& operator=(const OneOpenMpThread&) = delete;
+
+ private:
+  int saved_;
+};
+
 /// MUMPS in this process alone (OpenMP threads and the system BLAS), multifrontal: LDL^T with 2x2 pivots for
-/// a symmetric matrix, definite or not, or LU for any matrix, ordered by PORD. The analysis is kept until the
-/// pattern changes, and the values are copied from the matrix at each factorisation. Without PETSc it is the
-/// sequential library; with PETSc, the MPI library on MPI_COMM_SELF (cmake/FindMUMPS.cmake), which starts
-/// MPI if it has not started.
+/// a symmetric matrix, definite or not, or LU for any matrix, ordered by AMD or PORD. The analysis is kept
+/// until the pattern changes, and the values are copied from the matrix at each factorisation. Without PETSc
+/// it is the sequential library; with PETSc, the MPI library on MPI_COMM_SELF (cmake/FindMUMPS.cmake), which
+/// starts MPI if it has not started.
 class MumpsSolver final : public LinearSolver {
  public:
   explicit MumpsSolver(bool symmetric) : symmetric_(symmetric) {
@@ -78,10 +96,13 @@ class MumpsSolver final : public LinearSolver {
     icntl(2) = -1;
     icntl(3) = -1;
     icntl(4) = 0;
-    // PORD (set in analyze()): of the orderings of Debian's build (AMD, AMF, QAMD, PORD, SCOTCH; no METIS),
-    // the fastest factorisations of the contact tangents of twisted bundles: at 75 fibres LDL^T 11.4 s
-    // against 17.8 s with SCOTCH and 23.3 s with AMD (docs/performance.md). On a lone rod it is 20 % slower
-    // than SCOTCH.
+    // The ordering (set in analyze()): PORD for large matrices, AMD for small ones. Of the orderings of
+    // Debian's build (AMD, AMF, QAMD, PORD, SCOTCH; no METIS), PORD gives the fastest factorisations of the
+    // contact tangents of twisted bundles: at 75 fibres (134,325 unknowns) LDL^T 11.4 s against 17.8 s with
+    // SCOTCH and 23.3 s with AMD. On the 3x1 knot (5,463 unknowns, LU) AMD factorises faster: `thread` took
+    // 118 s with AMD, 120 s with AMF or QAMD, 127 s with SCOTCH and 128 s with PORD, the same steps and
+    // iterations (docs/performance.md). On a lone rod PORD is 20 % slower than SCOTCH.
+    //
     // No scaling. MUMPS's automatic choice (ICNTL(8) = 77) computes an iterative row and column scaling at
     // every factorisation, a few passes over the entries: on the 3x1 yarn's twist (5,463 unknowns, LU) 13 %
     // of the run's samples, and the linear solve took 24 % less time without it, for the same steps, Newton
@@ -121,16 +142,18 @@ class MumpsSolver final : public LinearSolver {
     }
     values_.assign(entries_.size(), 0.0);
     pattern_nonzeros_ = a.nonZeros();
-    // PORD finds no separator in a matrix whose unknowns are all coupled (one beam element, 18 free unknowns:
-    // "no valid number of stages in multisector", and it ends the process); AMD orders small matrices, whose
-    // ordering costs nothing. A matrix of 128 unknowns or more without zeros would need a model of five
-    // elements (27 unknowns each) every two of which are in contact, and nothing else.
-    icntl(7) = a.rows() < kSmallestForPord ? 0 : 4;
+    // AMD below kSmall unknowns, PORD above (the constructor). Between 5,463 unknowns (AMD faster) and
+    // 134,325 (PORD twice as fast) the two were not compared; 10,000 keeps every larger case as it was
+    // measured. PORD could not order the smallest matrices anyway: it finds no separator in a matrix whose
+    // unknowns are all coupled (one beam element, 18 free unknowns: "no valid number of stages in
+    // multisector", and it ends the process).
+    icntl(7) = a.rows() < kSmall ? 0 : 4;
     id_.n = static_cast<MUMPS_INT>(a.rows());
     id_.nnz = static_cast<MUMPS_INT8>(entries_.size());
     id_.irn = rows_.data();
     id_.jcn = cols_.data();
     id_.a = values_.data();
+    const OneOpenMpThread one_thread(small());
     call(1, "analysis");
   }
 
@@ -140,6 +163,7 @@ class MumpsSolver final : public LinearSolver {
     for (std::size_t i = 0; i < entries_.size(); ++i) values_[i] = a.valuePtr()[entries_[i]];
     // The workspace is estimated in the analysis; pivoting can need more. MUMPS says so (INFOG(1) = -8, -9
     // or -14 to -17), and the factorisation is tried again with a larger margin.
+    const OneOpenMpThread one_thread(small());
     for (int attempt = 0;; ++attempt) {
       id_.job = 2;
       dmumps_c(&id_);
@@ -156,7 +180,10 @@ class MumpsSolver final : public LinearSolver {
     id_.nrhs = 1;
     id_.lrhs = static_cast<MUMPS_INT>(x.size());
     id_.job = 3;
-    dmumps_c(&id_);
+    {
+      const OneOpenMpThread one_thread(small());
+      dmumps_c(&id_);
+    }
     // A failed solve gives a vector Newton recognises as failed, as Eigen's solvers do.
     if (infog(1) < 0) x.setConstant(std::numeric_limits<double>::quiet_NaN());
     return x;
@@ -173,7 +200,13 @@ class MumpsSolver final : public LinearSolver {
 #ifndef NODUS_HAVE_PETSC
   static constexpr MUMPS_INT kUseCommWorld = -987654;  // the sequential library's only communicator
 #endif
-  static constexpr Eigen::Index kSmallestForPord = 128;  // smaller matrices are ordered by AMD (analyze())
+  /// Smaller matrices are ordered by AMD (analyze()) and factorised and solved on one OpenMP thread: on the
+  /// 3x1 knot's twist (5,463 unknowns) MUMPS's calls took 1.5 times as long on two threads as on one, the
+  /// threads of OpenBLAS's small dense kernels costing more than they share (docs/performance.md).
+  static constexpr Eigen::Index kSmall = 10000;
+  bool small() const {
+    return id_.n < kSmall;
+  }
 
   MUMPS_INT& icntl(int i) {
     return id_.icntl[i - 1];
