@@ -167,43 +167,52 @@ void SparseAssembler::add(std::span<const int> blocks, const Eigen::Ref<const Ei
   const auto block_size = [&](int b) {
     return offsets_[static_cast<std::size_t>(b) + 1] - offsets_[static_cast<std::size_t>(b)];
   };
+  // The first free unknown of a block of `size` unknowns whose reduced indices start at `free`; `size` if
+  // none.
+  const auto first_free = [](const int* free, int size) {
+    int first = 0;
+    while (first < size && free[first] < 0) ++first;
+    return first;
+  };
   int m = 0;
   for (int b : blocks) m += block_size(b);
   if (k.rows() != m || k.cols() != m) throw std::invalid_argument("SparseAssembler::add: size mismatch");
   double* values = matrix_.valuePtr();
-  int j = 0;  // column of k
+  const int* outer = matrix_.outerIndexPtr();
+  int j = 0;  // first column of k of the column block
   for (int column_block : blocks) {
-    if (!columns.contains(column_block)) {
-      j += block_size(column_block);
+    const int width = block_size(column_block);
+    const int* column_free = free_index_.data() + block_first(column_block);
+    const int first_column = first_free(column_free, width);
+    if (!columns.contains(column_block) || first_column == width) {
+      j += width;
       continue;
     }
-    const int* column_free = free_index_.data() + block_first(column_block);
-    for (int c = 0; c < block_size(column_block); ++c, ++j) {
-      const int col = column_free[c];
-      if (col < 0) continue;
-      int i = 0;  // first row of k of the row block
-      for (int row_block : blocks) {
-        const int size = block_size(row_block);
-        if (!rows_.contains(row_block)) {
-          i += size;
-          continue;
-        }
-        // The free unknowns of a block have consecutive reduced indices, so they sit next to each other in
-        // the column: one search per block.
-        const int* free = free_index_.data() + block_first(row_block);
-        int first = 0;
-        while (first < size && free[first] < 0) ++first;
-        if (first < size) {
-          int offset = value_offset(free[first], col);
-          for (int r = first; r < size; ++r) {
-            if (free[r] < 0) continue;
-            assert(matrix_.innerIndexPtr()[offset] == free[r]);
-            values[offset++] += k(i + r, j);
+    int i = 0;  // first row of k of the row block
+    for (int row_block : blocks) {
+      const int height = block_size(row_block);
+      const int* row_free = free_index_.data() + block_first(row_block);
+      const int first_row = first_free(row_free, height);
+      if (rows_.contains(row_block) && first_row < height) {
+        // Every free column of a block holds the same rows (the constructor), and the free unknowns of a
+        // block have consecutive reduced indices: the row block's entries start at the same distance from the
+        // top of each of its columns, found by one search for the pair of blocks.
+        const int depth =
+            value_offset(row_free[first_row], column_free[first_column]) - outer[column_free[first_column]];
+        for (int c = first_column; c < width; ++c) {
+          const int col = column_free[c];
+          if (col < 0) continue;
+          int offset = outer[col] + depth;
+          for (int r = first_row; r < height; ++r) {
+            if (row_free[r] < 0) continue;
+            assert(matrix_.innerIndexPtr()[offset] == row_free[r]);
+            values[offset++] += k(i + r, j + c);
           }
         }
-        i += size;
       }
+      i += height;
     }
+    j += width;
   }
 }
 
