@@ -820,11 +820,10 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
 }
 
 /// Where the contact forces act in `stage`: its own particles, or contact.particles; as ContactSettings holds
-/// them, {facing_particles, centre_facing}. StageParticles lists contact.particles' choices shifted by one.
+/// them, {facing_particles, centre_facing}.
 inline std::pair<bool, bool> stage_particles(const StageSpec& stage, const ContactSettings& contact) {
-  const int choice = static_cast<int>(stage.particles) - 1;
-  if (choice < 0) return {contact.facing_particles, contact.centre_facing};
-  return {choice >= 1, choice == 2};
+  if (stage.particles == StageParticles::contact) return {contact.facing_particles, contact.centre_facing};
+  return {stage.particles != StageParticles::fixed, stage.particles == StageParticles::centres};
 }
 
 /// A run that continues from the state at the end of one stage of Scenario::stages (key `branches`).
