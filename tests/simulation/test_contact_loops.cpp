@@ -153,6 +153,60 @@ TEST(ContactLoops, LoopTwoAtItsCapIsFlaggedAndWarnedOncePerStage) {
   expect_warnings(r, expected);
 }
 
+// contact.normal_pass_residual: every Newton solve of the nested loop 3 that an update of the normals follows
+// stops once |R| is below the given fraction of the normal force at the state it starts from. With a
+// fraction so large that any residual passes (1e6), each such solve takes one iteration where that force is
+// not 0, the first solve of every step included, whose new contact elements carry no reactions until Newton
+// evaluates them (until 2026-11-29 that solve went on to the residual tolerance: several iterations). A
+// normal tolerance of 1e-12 rad keeps loop 3 updating up to its cap in every step with contact. Read from the
+// debug log: the Newton iterations logged between two updates of the normals, and whether the state the step
+// started from had elements pressing.
+TEST(ContactLoops, EveryPassOfLoopThreeStopsShortTheFirstOfAStepIncluded) {
+  auto sink = std::make_shared<spdlog::sinks::ringbuffer_sink_mt>(100000);
+  sink->set_pattern("%v");
+  const std::shared_ptr<spdlog::logger> previous = spdlog::default_logger();
+  auto logger = std::make_shared<spdlog::logger>("test", sink);
+  logger->set_level(spdlog::level::debug);
+  spdlog::set_default_logger(logger);
+  RunSummary summary;
+  {
+    Simulation sim(scenario::parse_scenario(
+        drag_scenario("  normal_pass_residual: 1.0e+6\n  normal_tolerance: 1.0e-12\n  max_detections: 1\n"),
+        "drag.yaml"));
+    summary = sim.run({});
+  }
+  spdlog::set_default_logger(previous);
+  ASSERT_TRUE(summary.converged) << summary.failure;
+  int passes = 0, first_passes = 0;  // solves followed by an update of the normals, the first of a step
+  int iterations = 0;                // Newton iterations logged since the last solve ended
+  bool step_start = true;
+  bool pressing = false, pressing_at_start = false;  // at the last evaluation; at the step's start
+  for (const std::string& line : sink->last_formatted()) {
+    if (line.rfind("newton ", 0) == 0) {
+      ++iterations;
+    } else if (line.rfind("contact: ", 0) == 0) {  // "contact: N of M elements pressing ..."
+      pressing = line.rfind("contact: 0 of", 0) != 0;
+    } else if (line.rfind("contact loop 3: normals turned", 0) == 0) {
+      ++passes;
+      if (step_start && pressing_at_start) {
+        ++first_passes;
+        EXPECT_EQ(iterations, 1) << "the first pass of a step: " << line;
+      } else if (!step_start) {
+        EXPECT_EQ(iterations, 1) << "a later pass: " << line;
+      }
+      iterations = 0;
+      step_start = false;
+    } else if (line.rfind("smallest clearance", 0) == 0) {  // logged once a step has converged
+      iterations = 0;
+      step_start = true;
+      pressing_at_start = pressing;
+    }
+  }
+  std::printf("%d passes followed by an update of the normals, %d of them the first of a step\n", passes,
+              first_passes);
+  EXPECT_GE(first_passes, 10);  // the tool presses in the 15 steps of press and drag
+}
+
 }  // namespace
 }  // namespace nodus::simulation
 

@@ -127,6 +127,7 @@ contact::ContactGeometry ContactLoops::detect() {
 }
 
 void ContactLoops::install(contact::ContactGeometry next) {
+  replaced_normal_force_ = total_normal_force(problem_.contact_states());
   const contact::ContactGeometry& old = problem_.contact_geometry();
   const double reach = contact::resolve_parameters(detection_, model_, beams_).separation_distance;
   std::vector<double> penalty =
@@ -219,9 +220,13 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     // A solve whose state only serves to update the normals and penalties may stop short of the residual
     // tolerance (contact.normal_pass_residual); the solve that ends the loop goes on to it, below.
     double pass_residual = 0.0;
-    // The normal force at the last evaluation: of the state the solve starts from.
-    if (laws_.normal_pass_residual > 0.0)
-      pass_residual = laws_.normal_pass_residual * total_normal_force(problem_.contact_states());
+    // The normal force at the last evaluation: of the state the solve starts from. Right after a detection
+    // the new contact elements carry no reactions until Newton evaluates them (install() zeroes them); the
+    // elements they replaced give that state's force then.
+    if (laws_.normal_pass_residual > 0.0) {
+      const double force = total_normal_force(problem_.contact_states());
+      pass_residual = laws_.normal_pass_residual * (force > 0.0 ? force : replaced_normal_force_);
+    }
     // Linearized normals: Newton starts with the normals as loop 3 left them (far from equilibrium, where the
     // iterates overshoot, normals that follow them turn the contact forces with them and the follower
     // force's tangent, not definite, sends Newton further away), and lets them follow the state, with their

@@ -142,6 +142,9 @@ class ContactLoops {
   ContactLawSettings laws_;
   ContactStepStats stats_;
   double detection_seconds_ = 0.0;
+  /// The sum of R_N of the contact elements that install() replaced, at their last evaluation [N]: the
+  /// normal force of the state a solve starts from while the new elements have not been evaluated yet.
+  double replaced_normal_force_ = 0.0;
 };
 
 }  // namespace nodus::simulation
