@@ -214,7 +214,7 @@ void ContactLoops::collect_stats() {
   }
 }
 
-bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
+bool ContactLoops::solve_normals_nested(solver::NewtonReport& total, bool last) {
   for (int m = 1;; ++m) {
     ++stats_.normal_iterations;
     // A solve whose state only serves to update the normals and penalties may stop short of the residual
@@ -248,8 +248,11 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     };
     const solver::NewtonReport pass = solve(pass_residual);
     if (!add_solve(total, pass)) return false;
-    const bool at_tolerance =
-        pass.residual <= problem_.residual_tolerance() && pass.increment <= problem_.increment_tolerance();
+    // The state the loop ends in: to the residual tolerance, or, where a detection follows in this step and
+    // passes are short, as short as a pass (the next detection's elements are solved for again).
+    const bool at_tolerance = (pass.residual <= problem_.residual_tolerance() &&
+                               pass.increment <= problem_.increment_tolerance()) ||
+                              (!last && pass_residual > 0.0 && pass.residual <= pass_residual);
     const contact::ContactGeometry kept = problem_.contact_geometry();
     const std::vector<double> kept_penalty = problem_.zone_penalty();
     const double turn = update_normals();
@@ -259,13 +262,14 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total) {
     // no reason to solve again.
     const bool converged = (following || turn <= laws_.normal_tolerance) && !off;
     if (converged || m >= laws_.max_normal_iterations) {
-      // Converged: the state is the equilibrium of these normals and penalties. At the cap: keep those
-      // Newton converged with too, and say whether the update would still have changed them.
+      // Converged: the state is the equilibrium of these normals and penalties (to the tolerance, or short
+      // of it before a further detection). At the cap: keep those Newton converged with too, and say
+      // whether the update would still have changed them.
       if (!following) problem_.contact_geometry() = kept;
       problem_.zone_penalty() = kept_penalty;
       stats_.normals_capped = !converged;
       // The state must be the equilibrium of the normals and penalties kept: to the residual tolerance.
-      if (!at_tolerance && !add_solve(total, solve(0.0))) return false;
+      if (!at_tolerance && !add_solve(total, solve(last ? 0.0 : pass_residual))) return false;
       if (!converged)
         spdlog::debug(
             "contact loop 3: stopped at max_normal_iterations = {}; normals would still turn by "
@@ -341,9 +345,15 @@ solver::NewtonReport ContactLoops::solve() {
   newton_.restart();
   stats_.detections = 1;
   bool settled = false;  // the last detection changed the contact forces by less than kSetTolerance
+  // With short passes of the nested loop 3, the solves before a further detection stop short too: only the
+  // state after the step's last detection must be the equilibrium to the residual tolerance, and loop 2
+  // judges what the new elements change in the residual rather than the residual itself.
+  const bool short_before_detection = !laws_.normals_inside_newton && laws_.normal_pass_residual > 0.0;
   for (;;) {
-    const bool solved =
-        laws_.normals_inside_newton ? solve_normals_inside_newton(total) : solve_normals_nested(total);
+    const bool last = settled || stats_.detections >= laws_.max_detections;
+    const bool solved = laws_.normals_inside_newton
+                            ? solve_normals_inside_newton(total)
+                            : solve_normals_nested(total, last || !short_before_detection);
     if (!solved) return total;
     if (settled) break;
     if (stats_.detections >= laws_.max_detections) {
@@ -356,21 +366,32 @@ solver::NewtonReport ContactLoops::solve() {
     // new set changes the contact forces by little: the state is in equilibrium with it to the residual
     // tolerance (Newton would stop at once: done), or to kSetTolerance of the total normal force (one more
     // Newton solve with the new set, and no further detection).
+    Eigen::VectorXd before;  // the residual with the elements replaced, where the state is short of balance
+    if (short_before_detection) before = problem_.full_residual();
     install(detect());
     ++stats_.detections;
     Eigen::VectorXd residual;
     problem_.evaluate(residual, false);
     if (residual.norm() <= problem_.residual_tolerance()) break;
+    Eigen::VectorXd change = problem_.full_residual();
+    double change_norm = residual.norm();
+    if (before.size() == change.size()) {
+      change -= before;
+      double sum = 0.0;
+      for (Eigen::Index d = 0; d < change.size(); ++d)
+        if (!problem_.prescribed(static_cast<int>(d))) sum += change[d] * change[d];
+      change_norm = std::sqrt(sum);
+    }
     const double zone_imbalance = worst_zone_imbalance(
         problem_.contact_geometry().elements, problem_.contact_states(),
-        [this](int element) { return model_.element_first_node(element); }, problem_.full_residual(),
+        [this](int element) { return model_.element_first_node(element); }, change,
         [this](int dof) { return problem_.prescribed(dof); });
-    settled = residual.norm() <= kSetTolerance * total_normal_force(problem_.contact_states()) &&
+    settled = change_norm <= kSetTolerance * total_normal_force(problem_.contact_states()) &&
               zone_imbalance <= kSetTolerance;
     spdlog::debug(
-        "contact loop 2: |R| = {:.3e} with the new contact elements (tolerance {:.1e}; {:.1e} of "
-        "the normal force, overall and in every zone, the worst zone at {:.1e}: {})",
-        residual.norm(), problem_.residual_tolerance(), kSetTolerance, zone_imbalance,
+        "contact loop 2: |R| = {:.3e} with the new contact elements, changed by {:.3e} (tolerance {:.1e}; "
+        "{:.1e} of the normal force, overall and in every zone, the worst zone at {:.1e}: {})",
+        residual.norm(), change_norm, problem_.residual_tolerance(), kSetTolerance, zone_imbalance,
         settled ? "settled" : "not settled");
   }
   collect_stats();  // Newton's last evaluation was at the converged state, with these contact elements

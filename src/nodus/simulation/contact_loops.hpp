@@ -114,8 +114,10 @@ class ContactLoops {
 
  private:
   /// Loop 3, nested: Newton solves to convergence with the normals and penalties fixed, updated between
-  /// them. Adds to `total`; returns false if a Newton solve failed.
-  bool solve_normals_nested(solver::NewtonReport& total);
+  /// them. Adds to `total`; returns false if a Newton solve failed. `last`: no detection follows in this
+  /// step, and the state must be the equilibrium to the residual tolerance; otherwise, with short passes
+  /// (contact.normal_pass_residual), the solve that ends the loop may stop short as the others do.
+  bool solve_normals_nested(solver::NewtonReport& total, bool last);
   /// Loop 3 inside one Newton solve (ContactLawSettings::normals_inside_newton).
   bool solve_normals_inside_newton(solver::NewtonReport& total);
   /// A detection in the current state (timed).
