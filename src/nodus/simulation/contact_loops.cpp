@@ -268,7 +268,8 @@ bool ContactLoops::solve_normals_nested(solver::NewtonReport& total, bool last) 
       if (!following) problem_.contact_geometry() = kept;
       problem_.zone_penalty() = kept_penalty;
       stats_.normals_capped = !converged;
-      // The state must be the equilibrium of the normals and penalties kept: to the residual tolerance.
+      // The state must be the equilibrium of the normals and penalties kept: to the residual tolerance, or,
+      // before a further detection, to the pass's bound.
       if (!at_tolerance && !add_solve(total, solve(last ? 0.0 : pass_residual))) return false;
       if (!converged)
         spdlog::debug(
