@@ -807,10 +807,10 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "max_penetration], or below max_penetration / 1000 (a zone that only touches)"),
       K::real("contact.normal_pass_residual", &ContactSettings::normal_pass_residual, "", ">= 0",
               ranges::non_negative,
-              "nested loop 3: each Newton solve between two updates of the normals and penalties "
-              "stops once |R| <= this fraction of the total normal force, and the solve that ends "
-              "the loop goes on to the residual tolerance. 0: every solve to the residual tolerance, "
-              "as in the paper (docs/contact.md)"),
+              "nested loop 3: each Newton solve between two updates of the normals and penalties, "
+              "or before a further detection of loop 2, stops once |R| <= this fraction of the total "
+              "normal force, and the solve that ends the step goes on to the residual tolerance. 0: "
+              "every solve to the residual tolerance, as in the paper (docs/contact.md)"),
       K::flag("contact.crossing_guard", &ContactSettings::crossing_guard,
               "refuse a converged step in which the axes of two contact beams, or of two parts of "
               "one more than separation_distance apart along it, passed through each other, and cut "
