@@ -220,6 +220,31 @@ TEST(ScenarioContact, BeamsByNameResolveToIndices) {
   EXPECT_EQ(parse("contact: {beams: [\"strand\"]}\n").contact.beams, std::vector<int>{1});  // quoted name
 }
 
+TEST(ScenarioContact, FrictionPairsGiveTheCoefficientOfEachPairTheLastEntryWins) {
+  const Scenario s = parse(
+      "contact:\n  friction: 0.3\n  friction_pairs:\n    - {beams: [wire], friction: 0}\n"
+      "    - {beams: [rod], with: [strand, wire], friction: 0.5}\n");
+  const ContactSettings& c = s.contact;
+  ASSERT_EQ(c.friction_pairs.size(), 2u);
+  EXPECT_EQ(c.friction_pairs[0].beams, std::vector<int>{2});
+  EXPECT_TRUE(c.friction_pairs[0].with.empty());
+  EXPECT_EQ(c.friction_pairs[0].friction, 0.0);
+  EXPECT_EQ(c.friction_pairs[1].beams, std::vector<int>{0});
+  EXPECT_EQ(c.friction_pairs[1].with, (std::vector<int>{1, 2}));
+  EXPECT_EQ(c.friction_pairs[1].friction, 0.5);
+  const int rod = 0, strand = 1, wire = 2;
+  EXPECT_EQ(c.friction_between(wire, wire), 0.0);    // the first entry: wire with any beam, itself included
+  EXPECT_EQ(c.friction_between(strand, wire), 0.0);  // the first entry, in either order
+  EXPECT_EQ(c.friction_between(wire, strand), 0.0);
+  EXPECT_EQ(c.friction_between(rod, wire), 0.5);  // both entries apply: the last one
+  EXPECT_EQ(c.friction_between(wire, rod), 0.5);
+  EXPECT_EQ(c.friction_between(rod, strand), 0.5);
+  EXPECT_EQ(c.friction_between(strand, rod), 0.5);
+  EXPECT_EQ(c.friction_between(rod, rod), 0.3);  // rod's entry is only with strand and wire
+  EXPECT_EQ(c.friction_between(strand, strand), 0.3);
+  EXPECT_TRUE(parse("contact: {friction: 0.2}\n").contact.friction_pairs.empty());
+}
+
 TEST(ScenarioContact, ConsistencyRulesAcceptTheLimitsAndAutoValues) {
   // matching_length may equal test_point_spacing; separation_distance just above proximity_distance.
   const ContactSettings contact =
@@ -325,6 +350,32 @@ TEST(ScenarioContactErrors, BeamsNotANonEmptyList) {
   EXPECT_EQ(error_of("contact:\n  beams:\n"),
             "knot.yaml:26: contact.beams: " + expected + ", got nothing (null)");
   EXPECT_EQ(error_of("contact:\n  beams: rod\n"), "knot.yaml:26: contact.beams: " + expected + ", got rod");
+}
+
+TEST(ScenarioContactErrors, FrictionPairs) {
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {beams: [rod, rdo], friction: 0}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].beams[1]: expected the name of a beam (rod | strand | "
+            "wire), got rdo");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {beams: [rod], with: [wire, wire], friction: 0}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].with[1]: expected each beam once in "
+            "contact.friction_pairs[].with, got wire");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {beams: [rod]}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].friction: expected a number >= 0, got nothing (missing "
+            "key)");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {friction: 0.1}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].beams: expected a list of beam names, non-empty, each "
+            "beam once, got nothing (missing key)");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {beams: [], friction: 0.1}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].beams: expected a list of beam names, non-empty, each "
+            "beam once, got []");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs:\n    - {beams: [rod], friction: -0.1}\n"),
+            "knot.yaml:27: contact.friction_pairs[0].friction: expected a number >= 0, got -0.1");
+  EXPECT_EQ(
+      error_of("contact:\n  friction_pairs:\n    - {beams: [rod], friction: 0, mu: 1}\n"),
+      "knot.yaml:27: contact.friction_pairs[0].mu: expected one of the keys beams | with | friction, got "
+      "an unknown key");
+  EXPECT_EQ(error_of("contact:\n  friction_pairs: {beams: [rod], friction: 0}\n"),
+            "knot.yaml:26: contact.friction_pairs: expected a list of maps, got a map");
 }
 
 TEST(ScenarioContactErrors, NonPositiveLengths) {
@@ -445,7 +496,8 @@ TEST(ScenarioContactErrors, UnknownKey) {
       "one of the keys enabled | self_contact | beams | proximity_distance | separation_distance | "
       "test_point_spacing | matching_length | element_spacing | section_pairing | forces | penalty | "
       "max_penetration | "
-      "regularization | friction | max_reversible_slip | friction_tangent | particles | max_detections | "
+      "regularization | friction | friction_pairs | max_reversible_slip | friction_tangent | particles | "
+      "max_detections | "
       "normal_updates | max_normal_iterations | normal_tolerance | normal_pass_residual | crossing_guard";
   EXPECT_EQ(error_of("contact:\n  self_contact: true\n  proximity: 0.3\n"),
             "knot.yaml:27: contact.proximity: expected " + keys + ", got an unknown key");
@@ -563,7 +615,9 @@ TEST(ScenarioContactDescribe, RoundTrips) {
         "  friction: 0.3\n  max_reversible_slip: 1e-3\n  particles: facing\n  max_detections: 7\n"
         "  max_normal_iterations: 1\n  normal_tolerance: 2.5e-4\n",
         "contact: {enabled: false, friction: 0.1, penalty: 1e5, max_penetration: auto}\n",
-        "contact: {friction: 0.2, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n"}) {
+        "contact: {friction: 0.2, friction_tangent: varying}\nsolver: {linear_solver: umfpack}\n",
+        "contact:\n  friction: 0.3\n  friction_pairs:\n    - {beams: [wire, rod], friction: 0}\n"
+        "    - {beams: [strand], with: [rod], friction: 0.125}\n"}) {
     const Scenario original = parse(section);
     Scenario again;
     ASSERT_NO_THROW(again = parse_scenario(describe(original), "described.yaml")) << describe(original);
@@ -591,6 +645,12 @@ TEST(ScenarioContactDescribe, RoundTrips) {
     EXPECT_EQ(a.max_detections, b.max_detections) << section;
     EXPECT_EQ(a.max_normal_iterations, b.max_normal_iterations) << section;
     EXPECT_EQ(a.normal_tolerance, b.normal_tolerance) << section;
+    ASSERT_EQ(a.friction_pairs.size(), b.friction_pairs.size()) << section;
+    for (std::size_t k = 0; k < a.friction_pairs.size(); ++k) {
+      EXPECT_EQ(a.friction_pairs[k].beams, b.friction_pairs[k].beams) << section;
+      EXPECT_EQ(a.friction_pairs[k].with, b.friction_pairs[k].with) << section;
+      EXPECT_EQ(a.friction_pairs[k].friction, b.friction_pairs[k].friction) << section;
+    }
   }
 }
 

@@ -254,6 +254,56 @@ TEST_F(CrossingFriction, SticksWithTheBeamStiffnessThenSlidesAtMuN) {
   EXPECT_GE(slip_steps, 8);
 }
 
+/// The crossing run with `contact` as its contact section; the sliding steps' ratio T / N at the upper beam's
+/// supports (friction force over normal force), one per step of `slide` past twice the saturation shift.
+/// `slipping`: every pressing element slips there (false where there is no friction, and so no slip).
+std::vector<double> crossing_slide_ratios(const std::string& contact, bool slipping = true) {
+  std::string text = kCrossing;
+  const std::string original = "contact: {self_contact: false, friction: 0.3}\n";
+  text.replace(text.find(original), original.size(), contact);
+  simulation::Simulation sim(scenario::parse_scenario(text, "crossing_pairs.yaml"));
+  Recorder recorder;
+  EXPECT_TRUE(sim.run({&recorder}).converged);
+  std::vector<double> ratios;
+  for (std::size_t k = 0; k < recorder.records.size(); ++k) {
+    const simulation::StepRecord& r = recorder.records[k];
+    if (r.stage != kCrossingStages - 1 || crossing_shift(r.time) < 2.0 * kStickX) continue;
+    const double t = r.sections[2].force.x() + r.sections[3].force.x();
+    const double n = -(r.sections[2].force.z() + r.sections[3].force.z());
+    EXPECT_GT(n, 0.0);
+    const Carrying c = carrying(recorder.contacts[k]);
+    EXPECT_GE(c.loaded, 1);
+    EXPECT_EQ(c.slipping, slipping ? c.loaded : 0);
+    ratios.push_back(t / n);
+  }
+  return ratios;
+}
+
+// contact.friction_pairs: the pair's coefficient replaces contact.friction for the contacts between its
+// beams. The slide of the crossing, where T = mu N at the supports (above), measures which mu acted.
+TEST(ContactFriction, APairOfBeamsSlidesWithItsOwnCoefficient) {
+  // Another coefficient for the pair than the default (which then acts nowhere here).
+  const std::vector<double> own = crossing_slide_ratios(
+      "contact:\n  self_contact: false\n  friction: 0.6\n"
+      "  friction_pairs: [{beams: [upper], with: [lower], friction: 0.15}]\n");
+  ASSERT_GE(own.size(), 8u);
+  for (double ratio : own) EXPECT_NEAR(ratio, 0.15, 1e-3 * 0.15);  // 1e-3 as in the test above
+  // Frictionless by default, the pair's friction from its entry alone.
+  const std::vector<double> only = crossing_slide_ratios(
+      "contact:\n  self_contact: false\n  friction_pairs: [{beams: [lower], friction: 0.3}]\n");
+  ASSERT_GE(only.size(), 8u);
+  for (double ratio : only) EXPECT_NEAR(ratio, 0.3, 1e-3 * 0.3);
+  // A frictionless pair among frictional beams: no tangential force at all.
+  const std::vector<double> none = crossing_slide_ratios(
+      "contact:\n  self_contact: false\n  friction: 0.3\n"
+      "  friction_pairs: [{beams: [lower, upper], friction: 0}]\n",
+      false);
+  ASSERT_GE(none.size(), 8u);
+  // What x force is left comes with the normal, which tilts with the bent lower beam's slope where the upper
+  // one crosses it (T / N from 1.4e-5 to 2e-5): far below the default's 0.3.
+  for (double ratio : none) EXPECT_NEAR(ratio, 0.0, 1e-4);
+}
+
 TEST_F(CrossingFriction, StickSurvivesRedetection) {
   ASSERT_TRUE(converged_);
   const std::vector<simulation::StepRecord>& records = recorder_->records;

@@ -56,9 +56,17 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
     const ContactElement& e = geometry_.elements[k];
     const int ei = e.particle_i.element, ej = e.particle_j.element;
     const NormalLaw law{penalty_[static_cast<std::size_t>(e.zone)], regularization_};
+    const FrictionLaw* friction = friction_ ? &*friction_ : nullptr;
+    FrictionLaw pair;  // the coefficient of the pair of beams (set_pair_friction)
+    if (friction && !pair_friction_.empty()) {
+      pair = *friction;
+      pair.coefficient =
+          pair_friction_[static_cast<std::size_t>(e.particle_i.beam * num_beams_ + e.particle_j.beam)];
+      friction = pair.coefficient > 0.0 ? &pair : nullptr;
+    }
     contact_response(e, model_.gather(state.x, ei), model_.gather(state.x, ej),
                      model_.gather(state.x_committed, ei), model_.gather(state.x_committed, ej), law,
-                     friction_ ? &*friction_ : nullptr, reversible_committed_[k], options_, r);
+                     friction, reversible_committed_[k], options_, r);
     states_[k] = {r.gap, r.normal_reaction, r.friction.force, r.friction.reversible, r.friction.slip};
   };
   // Each thread adds the entries of its own nodes (blocks), so the sums do not depend on the thread count.

@@ -48,6 +48,13 @@ class ContactTerm final : public model::Term {
   /// The laws: p_reg of the normal law [mm], and friction (none: frictionless).
   void set_laws(double regularization, std::optional<FrictionLaw> friction, ResponseOptions options = {});
 
+  /// Friction coefficients per pair of beams, `coefficients[i * num_beams + j]` for beams i and j, in place
+  /// of the law's own (set_laws; with a law only); empty: the law's for every pair.
+  void set_pair_friction(std::vector<double> coefficients, int num_beams) {
+    pair_friction_ = std::move(coefficients);
+    num_beams_ = num_beams;
+  }
+
   /// Whether the normals follow the state, linearised (ResponseOptions::linearized_normal), from the next
   /// evaluation on.
   void set_linearized_normal(bool on) { options_.linearized_normal = on; }
@@ -81,6 +88,8 @@ class ContactTerm final : public model::Term {
   std::vector<ContactState> last_states_;
   double regularization_ = 0.0;
   std::optional<FrictionLaw> friction_;
+  std::vector<double> pair_friction_;  ///< set_pair_friction
+  int num_beams_ = 0;
   ResponseOptions options_;
   solver::OrderedAssembly<ContactResponse> assembly_;  ///< the elements' responses, evaluated on all threads
 };

@@ -306,6 +306,19 @@ std::string describe(const Scenario& scenario) {
     }
     return true;
   });
+  if (!scenario.contact.friction_pairs.empty()) {
+    const auto names = [&](const std::vector<int>& list) {
+      std::string text = "[";
+      for (std::size_t i = 0; i < list.size(); ++i)
+        text += (i > 0 ? ", " : "") + yaml_name(scenario.beams.at(static_cast<std::size_t>(list[i])).name);
+      return text + "]";
+    };
+    line("  friction_pairs:");
+    for (const FrictionPair& pair : scenario.contact.friction_pairs)
+      line(fmt::format("    - {{beams: {}{}, friction: {}}}", names(pair.beams),
+                       pair.with.empty() ? std::string() : ", with: " + names(pair.with),
+                       format_number(pair.friction)));
+  }
 
   if (!scenario.branches.empty()) {
     line("branches:");

@@ -151,6 +151,14 @@ std::string canonical_text(const Scenario& s) {
   out.line("solver.petsc_options", s.solver.petsc_options);
   out.keys(s.contact, "contact", "contact");
   out.line("contact.beams", list(s.contact.beams));
+  // Only where there are any: the fingerprints of the scenarios without them stay as they were.
+  for (std::size_t k = 0; k < s.contact.friction_pairs.size(); ++k) {
+    const FrictionPair& pair = s.contact.friction_pairs[k];
+    const std::string at = fmt::format("contact.friction_pairs[{}]", k);
+    out.line(at + ".beams", list(pair.beams));
+    out.line(at + ".with", list(pair.with));
+    out.line(at + ".friction", exact(pair.friction));
+  }
   return std::move(out).text();
 }
 

@@ -2,6 +2,7 @@
 /// A scenario: what a YAML file describes, resolved and validated. Units throughout: mm, N, MPa, s.
 /// Every field maps one to one onto a key of the file; docs/scenario.md documents each key.
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <optional>
@@ -648,6 +649,23 @@ enum class SectionPairing {
   bisector,  ///< the sections whose centre line is normal to their mean tangent, on the line of zeta
 };
 
+/// A friction coefficient for the contacts between some beams (contact.friction_pairs): those between a
+/// beam of `beams` and a beam of `with` (any beam, one of `beams` included, if `with` is empty).
+struct FrictionPair {
+  std::vector<int> beams;  ///< indices into Scenario::beams, non-empty
+  std::vector<int> with;   ///< indices into Scenario::beams; empty: any beam
+  double friction = 0.0;   ///< mu [-], >= 0
+  int line = 0;            ///< line of the entry in the file (for messages)
+
+  /// Whether the contacts between beams i and j (in either order) take this coefficient.
+  bool applies(int i, int j) const {
+    const auto in = [](const std::vector<int>& list, int b) {
+      return std::find(list.begin(), list.end(), b) != list.end();
+    };
+    return (in(beams, i) && (with.empty() || in(with, j))) || (in(beams, j) && (with.empty() || in(with, i)));
+  }
+};
+
 /// Contact detection settings: the `contact` section (docs/scenario.md, docs/contact.md). A length (or the
 /// penalty) of 0 means "auto": derived from the radii and element lengths when the simulation starts (the
 /// library takes any value <= 0 so; validate() refuses negative ones, as the reader does).
@@ -663,11 +681,13 @@ struct ContactSettings {
   /// Which two sections each contact element pairs (contact.section_pairing).
   SectionPairing section_pairing = SectionPairing::plane;
   // Contact mechanics (Sect. 5-6).
-  bool forces = true;                ///< apply contact forces; false: detection only
-  double penalty = 0.0;              ///< initial k_c per zone [N/mm], auto if <= 0
-  double max_penetration = 0.0;      ///< p_max [mm], auto if <= 0
-  double regularization = 0.0;       ///< p_reg [mm], auto if <= 0
-  double friction = 0.0;             ///< mu [-], >= 0
+  bool forces = true;            ///< apply contact forces; false: detection only
+  double penalty = 0.0;          ///< initial k_c per zone [N/mm], auto if <= 0
+  double max_penetration = 0.0;  ///< p_max [mm], auto if <= 0
+  double regularization = 0.0;   ///< p_reg [mm], auto if <= 0
+  double friction = 0.0;         ///< mu [-], >= 0, of the pairs of beams that friction_pairs leaves out
+  /// Other coefficients between some beams; where several entries apply to a pair, the last one does.
+  std::vector<FrictionPair> friction_pairs;
   double max_reversible_slip = 0.0;  ///< g_rev_max [mm], auto if <= 0
   FrictionTangent friction_tangent = FrictionTangent::frozen;
   /// Particles at the facing points of the sections during Newton (contact.particles: facing); false: the
@@ -685,6 +705,14 @@ struct ContactSettings {
   double normal_pass_residual = 0.0;
   /// A converged step in which two axes crossed each other is refused and cut back (contact::find_crossing).
   bool crossing_guard = true;
+
+  /// The friction coefficient between beams i and j: of the last entry of friction_pairs that applies, else
+  /// friction.
+  double friction_between(int i, int j) const {
+    for (auto it = friction_pairs.rbegin(); it != friction_pairs.rend(); ++it)
+      if (it->applies(i, j)) return it->friction;
+    return friction;
+  }
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<ContactSettings>> keys();
@@ -753,7 +781,20 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
               "max_penetration / 10")
           .or_auto(),
       K::real("contact.friction", &ContactSettings::friction, "", ">= 0", ranges::non_negative,
-              "Coulomb friction coefficient mu (Eq. 55-64); 0: frictionless"),
+              "Coulomb friction coefficient mu (Eq. 55-64); 0: frictionless. Between the beams of "
+              "an entry of friction_pairs, that entry's"),
+      K::doc("contact.friction_pairs", KeyType::list, "", "[]", "of maps",
+             "other friction coefficients between some beams (a frictionless tool, another "
+             "material); where several entries apply to a pair of beams, the last one does"),
+      K::doc("contact.friction_pairs[].beams", KeyType::list, "", "required",
+             "of beam names, non-empty, each beam once",
+             "the entry applies to the contacts of these beams: with each other, with themselves "
+             "and with any other beam, or only with those of with"),
+      K::doc("contact.friction_pairs[].with", KeyType::list, "", "any beam",
+             "of beam names, non-empty, each beam once",
+             "the beams whose contacts with those of beams the entry applies to"),
+      K::doc("contact.friction_pairs[].friction", KeyType::number, "", "required", ">= 0",
+             "Coulomb friction coefficient mu between those beams; 0: frictionless"),
       K::real("contact.max_reversible_slip", &ContactSettings::max_reversible_slip, "mm", "> 0 or auto",
               ranges::positive,
               "g_rev_max, the tangential displacement taken reversibly before sliding "
@@ -850,7 +891,8 @@ inline std::span<const Key<BranchSpec>> BranchSpec::keys() {
       K::doc("branches[].contact", KeyType::map, "", "-", "with friction only; needs a contact section",
              "overrides of the contact settings for the branch's stages"),
       K::doc("branches[].contact.friction", KeyType::number, "", "unchanged", ">= 0",
-             "Coulomb friction coefficient mu of the branch's stages"),
+             "Coulomb friction coefficient mu of the branch's stages (contact.friction_pairs "
+             "keep theirs)"),
       K::doc("branches[].stages", KeyType::list, "", "required", "non-empty, each item as in stages[]",
              "the branch's loading program, run in order after the from stage; stage names "
              "unique within the branch"),

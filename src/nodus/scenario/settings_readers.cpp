@@ -43,14 +43,28 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
   const MapView map(reader, *field);
   contact.enabled = true;
   read_keys(reader, map, ContactSettings::keys(), contact);
-  if (const auto value = map.get("beams")) {
-    for (const Field& item : reader.list(*value, true)) {
+  // A list of beam names, each once (`where`: the key, for the message).
+  const auto beam_list = [&](const Field& value, std::string_view where) {
+    std::vector<int> beams;
+    for (const Field& item : reader.list(value, true)) {
       const auto index = beam_names.find(item.node.IsScalar() ? item.node.Scalar() : std::string());
       if (!index) reader.fail(item, fmt::format("the name of a beam ({})", name_list(beam_names.names)));
-      if (std::find(contact.beams.begin(), contact.beams.end(), *index) != contact.beams.end()) {
-        reader.fail(item, "each beam once in contact.beams");
-      }
-      contact.beams.push_back(*index);
+      if (std::find(beams.begin(), beams.end(), *index) != beams.end())
+        reader.fail(item, fmt::format("each beam once in {}", where));
+      beams.push_back(*index);
+    }
+    return beams;
+  };
+  if (const auto value = map.get("beams")) contact.beams = beam_list(*value, "contact.beams");
+  if (const auto value = map.get("friction_pairs")) {
+    for (const Field& item : reader.list(*value, false)) {
+      const MapView entry(reader, item);
+      FrictionPair pair;
+      pair.line = item.line;
+      pair.beams = beam_list(entry.require("beams"), "contact.friction_pairs[].beams");
+      if (const auto with = entry.get("with")) pair.with = beam_list(*with, "contact.friction_pairs[].with");
+      pair.friction = reader.number(entry.require("friction"), [](double v) { return v >= 0.0; });
+      contact.friction_pairs.push_back(std::move(pair));
     }
   }
 

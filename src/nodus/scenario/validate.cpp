@@ -477,13 +477,26 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
 void check_contact(const Checker& check, const Scenario& s) {
   const ContactSettings& contact = s.contact;
   check.keys(ContactSettings::keys(), contact, "contact", "contact");
-  for (std::size_t i = 0; i < contact.beams.size(); ++i) {
-    const std::string path = fmt::format("contact.beams[{}]", i);
-    check.index(path, contact.beams[i], s.beams.size(), "beams");
-    if (std::find(contact.beams.begin(), contact.beams.begin() + static_cast<std::ptrdiff_t>(i),
-                  contact.beams[i]) != contact.beams.begin() + static_cast<std::ptrdiff_t>(i))
-      check.fail(path, "each beam once in contact.beams",
-                 s.beams[static_cast<std::size_t>(contact.beams[i])].name);
+  // Indices of beams, each once.
+  const auto check_beams = [&](const std::vector<int>& beams, const std::string& at, std::string_view where) {
+    for (std::size_t i = 0; i < beams.size(); ++i) {
+      const std::string path = fmt::format("{}[{}]", at, i);
+      check.index(path, beams[i], s.beams.size(), "beams");
+      if (std::find(beams.begin(), beams.begin() + static_cast<std::ptrdiff_t>(i), beams[i]) !=
+          beams.begin() + static_cast<std::ptrdiff_t>(i))
+        check.fail(path, fmt::format("each beam once in {}", where),
+                   s.beams[static_cast<std::size_t>(beams[i])].name);
+    }
+  };
+  check_beams(contact.beams, "contact.beams", "contact.beams");
+  for (std::size_t k = 0; k < contact.friction_pairs.size(); ++k) {
+    const FrictionPair& pair = contact.friction_pairs[k];
+    const std::string at = fmt::format("contact.friction_pairs[{}]", k);
+    if (pair.beams.empty()) check.fail_key(at + ".beams", "contact.friction_pairs[].beams", "[]");
+    check_beams(pair.beams, at + ".beams", "contact.friction_pairs[].beams");
+    check_beams(pair.with, at + ".with", "contact.friction_pairs[].with");
+    if (!(std::isfinite(pair.friction) && pair.friction >= 0.0))
+      check.fail_key(at + ".friction", "contact.friction_pairs[].friction", format_number(pair.friction));
   }
   if (contact.test_point_spacing > 0.0 && contact.matching_length > 0.0 &&
       contact.matching_length < contact.test_point_spacing)

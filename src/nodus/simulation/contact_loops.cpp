@@ -96,6 +96,7 @@ ContactLoops::ContactLoops(const model::Model& model, EquilibriumProblem& proble
   problem_.set_contact_laws(
       laws_.regularization, laws_.friction,
       {laws_.facing_particles, laws_.friction_normal_coupling, false, laws_.centre_facing});
+  problem_.set_contact_pair_friction(laws_.pair_friction, static_cast<int>(model_.beams().size()));
 }
 
 contact::Clearance ContactLoops::clearance() const {

@@ -28,6 +28,9 @@ struct ContactLawSettings {
   double max_penetration = 0.0;  ///< p_max [mm]
   double regularization = 0.0;   ///< p_reg [mm]
   std::optional<contact::FrictionLaw> friction;
+  /// With `friction`: its coefficient per pair of beams, [i * num_beams + j] for beams i and j of the model
+  /// (contact.friction_pairs); empty: friction->coefficient for every pair.
+  std::vector<double> pair_friction;
   /// Linearise friction with R_N varying (a non-symmetric tangent, needs an LU solver;
   /// contact.friction_tangent: varying); false: R_N held fixed in the friction tangent (symmetric).
   bool friction_normal_coupling = false;

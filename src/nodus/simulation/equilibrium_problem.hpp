@@ -117,6 +117,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
                         contact::ResponseOptions options = {}) {
     contact_->set_laws(regularization, friction, options);
   }
+  /// Friction coefficients per pair of beams (ContactTerm::set_pair_friction).
+  void set_contact_pair_friction(std::vector<double> coefficients, int num_beams) {
+    contact_->set_pair_friction(std::move(coefficients), num_beams);
+  }
   /// The contact normals follow the state, linearised in the tangent, or stay as the contact loops set them.
   void set_contact_normals_follow(bool on) { contact_->set_linearized_normal(on); }
   /// Where the contact forces act from the next evaluation on (ContactTerm::set_particles).

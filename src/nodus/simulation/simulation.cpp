@@ -185,7 +185,19 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   laws.max_penetration = c.max_penetration > 0.0 ? c.max_penetration : 0.02 * radius;
   laws.regularization = c.regularization > 0.0 ? c.regularization : 0.1 * laws.max_penetration;
   laws.penalty = c.penalty > 0.0 ? c.penalty : young * radius;
-  if (c.friction > 0.0)
+  // contact.friction_pairs: a coefficient per pair of beams, where an entry makes one differ.
+  const int num_beams = static_cast<int>(s.beams.size());
+  bool any_friction = c.friction > 0.0;
+  if (!c.friction_pairs.empty()) {
+    laws.pair_friction.resize(static_cast<std::size_t>(num_beams * num_beams));
+    for (int i = 0; i < num_beams; ++i)
+      for (int j = 0; j < num_beams; ++j) {
+        const double mu = c.friction_between(i, j);
+        laws.pair_friction[static_cast<std::size_t>(i * num_beams + j)] = mu;
+        any_friction = any_friction || mu > 0.0;
+      }
+  }
+  if (any_friction)
     laws.friction = contact::FrictionLaw{
         c.friction, c.max_reversible_slip > 0.0 ? c.max_reversible_slip : 0.5 * laws.max_penetration};
   // The friction tangent with R_N varying is not symmetric: the reader accepts it with LU (umfpack, mumps,
