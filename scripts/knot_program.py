@@ -273,6 +273,18 @@ YARN_CLAMP_Z = 0.12  # height of the loop's far point [mm]
 YARN_CLAMP_AWAY = 0.45
 YARN_CLAMP_DISTANCE = 0.18  # the yarn's outer radius + the clamp's
 YARN_THREAD_DURATION = 4.0  # s: 4 times slower than `loop`, so that the drag presses the yarn less
+# The clamps hold the loop through end B's dive, the first YARN_DIVE of the threading (stage `thread`); they are
+# taken away before end B comes up through the loop (stage `close`, the rest of the threading). Held further,
+# they squeezed the yarn as end B lifted the loop (below -2 p_max from 37 % of the threading on) or stalled the
+# threading (docs/knot_3x1.md, "Clamping beams").
+YARN_DIVE = 0.3
+# The path of the loop's far point (node 114 of the mean centreline, (-0.293, 1.011, 0.124) mm after `loop`)
+# through the dive, in the example without clamps (run of 2026-11-29): (fraction of the dive, displacement
+# [mm]). The clamps' supports follow it, as the monofilament's follow LOOP_TOP.
+YARN_LOOP_FAR_PATH = [
+    (0.167, [-0.048, -0.008, 0.004]), (0.333, [-0.081, -0.014, 0.010]), (0.5, [-0.122, -0.034, 0.023]),
+    (0.6, [-0.132, -0.041, 0.027]), (0.767, [-0.144, -0.048, 0.029]), (0.933, [-0.158, -0.055, 0.033]),
+    (1.0, [-0.164, -0.059, 0.035])]
 # End B's axis at 0.3 turns only part of the way towards +y: turned fully (0, 1, -0.1) while end B dives, the
 # yarn bent sharply at its rigid end, fibre r1's last element shortened to 0.85 h and its end section overlapped
 # fibre r3's by 3.1 p_max (docs/knot_3x1.md, "End B's dive").
@@ -285,10 +297,31 @@ YARN_THREAD = [  # (fraction of `thread`, position of end B [mm], its axis)
 YARN_FRICTIONS = (0.30, 0.20)  # the loosening branches (Sect. 7.3.3)
 
 
-def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, stages=None):
+def split_motion(motion, at):
+    """The keyframes of one stage's motion target split at stage fraction `at` into those of two stages, each
+    with its fractions of its own stage. A keyframe is added at `at` if there is none, interpolated linearly
+    between two keyframes of the same rotation."""
+    keyframes = motion["keyframes"]
+    if not any(abs(k["at"] - at) < 1e-9 for k in keyframes):
+        i = next(i for i, k in enumerate(keyframes) if k["at"] > at)
+        before = keyframes[i - 1] if i > 0 else {"at": 0.0, "translation": [0, 0, 0], "rotation": [0, 0, 0]}
+        after = keyframes[i]
+        if before["rotation"] != after["rotation"]:
+            raise ValueError("split_motion: a rotation would be interpolated")
+        u = (at - before["at"]) / (after["at"] - before["at"])
+        translation = (1 - u) * np.array(before["translation"]) + u * np.array(after["translation"])
+        keyframes = keyframes[:i] + [{"at": at, "translation": vec(translation), "rotation": after["rotation"]}] + \
+            keyframes[i:]
+    first = [dict(k, at=num(k["at"] / at)) for k in keyframes if k["at"] <= at + 1e-9]
+    second = [dict(k, at=num((k["at"] - at) / (1 - at))) for k in keyframes if k["at"] > at + 1e-9]
+    return {"keyframes": first}, {"keyframes": second}
+
+
+def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=True, stages=None):
     """The 3x1 yarn knot's scenario as data: the yarn twisted by the rigid bodies at its rovings' ends, then
     tied, tightened and released as the monofilament (knot_scenario()), its ends moved as rigid assemblies.
-    `clamp`: with the clamping beams of the monofilament (an experiment: threading then stalls, issue 18)."""
+    `clamp`: two clamping beams hold the loop through end B's dive (YARN_DIVE); without, the loop is threaded
+    as one stage `thread` and nothing holds it."""
     s = YARN_SCALE
     m = YARN["rovings"]
     half = YARN["length"] / 2
@@ -362,7 +395,10 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
     for k in side:
         for e, where in (("a", "start"), ("b", "end")):
             conditions.append({"name": f"clamp_{k}_{e}", "type": "motion", "beam": f"clamp_{k}", "at": where})
-    unclamp = clamp_motions({k: closed[k] + [0, 0, z * YARN_CLAMP_AWAY] for k, z in side.items()})
+    follow = clamp_motions({k: [(at, closed[k] + np.array(d)) for at, d in YARN_LOOP_FAR_PATH] for k in side},
+                           True)
+    unclamp = clamp_motions({k: closed[k] + np.array(YARN_LOOP_FAR_PATH[-1][1]) + [0, 0, z * YARN_CLAMP_AWAY]
+                             for k, z in side.items()})
 
     program = [
         # MUMPS throughout: with the AMD ordering and the one thread it takes below 10,000 unknowns, the twist
@@ -379,8 +415,9 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
          "motions": per_body(thread)},
         {"name": "unclamp", "steps": 4, "stabilization": stabilization, "contact_off": ["clamp_top", "clamp_bottom"],
          "motions": unclamp},
+        {"name": "close", "steps": 0, "duration": 0, "stabilization": stabilization},  # set below
         # End B is pulled along x through a guide: the bodies keep the position across x and the rotation
-        # that `thread` left them (the twist's conditions turn and keep, taken again), each pulled by F / 3,
+        # that the threading left them (the twist's conditions turn and keep, taken again), each pulled by F / 3,
         # and bound together along x.
         {"name": "pull", "steps": 40, "stabilization": stabilization,
          "release": [f"end_b{k}" for k in range(1, m + 1)],
@@ -395,8 +432,26 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
                 "line_search": True}
         return {"name": f"mu_{mu:.2f}", "from": "settle", "contact": {"friction": mu}, "stages": [release, rest]}
 
-    if not clamp:
-        program = [st for st in program if st["name"] not in ("clamp", "unclamp")]
+    contact = {"friction": 0.3, "friction_tangent": "varying", "max_detections": 2, "particles": "centres",
+               "normal_pass_residual": 0.01}
+    if clamp:
+        # `thread` is end B's dive, with the clamps following the loop's far point; `close` the rest of the
+        # threading, the same waypoints, after `unclamp`.
+        thread_stage = next(st for st in program if st["name"] == "thread")
+        close = next(st for st in program if st["name"] == "close")
+        dive_motions, close["motions"] = {}, {}
+        for name, motion in thread_stage["motions"].items():
+            dive_motions[name], close["motions"][name] = split_motion(motion, YARN_DIVE)
+        thread_stage["motions"] = {**dive_motions, **follow}
+        close["steps"] = thread_stage["steps"] - round(YARN_DIVE * thread_stage["steps"])
+        close["duration"] = num((1 - YARN_DIVE) * YARN_THREAD_DURATION)
+        thread_stage["steps"] = round(YARN_DIVE * thread_stage["steps"])
+        thread_stage["duration"] = num(YARN_DIVE * YARN_THREAD_DURATION)
+        # Frictionless against everything: the clamps keep the loop from rising and turning without dragging
+        # it along their path (with mu = 0.3 they stalled the threading, docs/knot_3x1.md).
+        contact["friction_pairs"] = [{"beams": ["clamp_top", "clamp_bottom"], "friction": 0}]
+    else:
+        program = [st for st in program if st["name"] not in ("clamp", "unclamp", "close")]
         clamp_beams = []
         conditions = [c for c in conditions if not c["name"].startswith("clamp_")]
     if stages:
@@ -410,8 +465,7 @@ def yarn_knot_scenario(elements=100, force=0.5, stabilization=0.3, clamp=False, 
         "conditions": conditions,
         "stages": program,
         **({"branches": [branch(mu) for mu in YARN_FRICTIONS]} if not stages or "settle" in stages else {}),
-        "contact": {"friction": 0.3, "friction_tangent": "varying", "max_detections": 2, "particles": "centres",
-                    "normal_pass_residual": 0.01},
+        "contact": contact,
         # MUMPS: 1.7 times KLU's speed where the knot forms, and faster on the twist too (above); a
         # solve that has not converged in 30 iterations rarely does, and one whose residual has not fallen
         # tenfold in 10 iterations is given up (a fifth fewer factorisations in the main run;
@@ -456,8 +510,11 @@ YARN_HEADER = """\
 #           examples/yarn_3x1_twist.yaml: KLU, MUMPS in the other stages; particles facing along the
 #           normal, along the centres in the other stages);
 #  loop:    end B is carried round and over the yarn, making a loop with one crossing;
-#  thread:  end B dives under the loop, comes up through it and leaves over its far side, while end A feeds
-#           yarn into the loop (no clamping beams, unlike the paper);
+#  clamp:   two clamping beams, held at their ends, are brought onto the loop's far side from above and
+#           below (frictionless against the yarn: contact.friction_pairs);
+#  thread:  end B dives under the loop while end A feeds yarn into it, the clamps following the loop;
+#  unclamp: the clamping beams are taken out of contact and lifted away;
+#  close:   end B comes up through the loop and leaves over its far side, end A still feeding;
 #  pull:    end B is let go along x and a force of {force:g} N (a third on each fibre) pulls it; its bodies keep
 #           their position across x and their rotation, and move together along x (bind_b); end A stays
 #           clamped;
@@ -479,11 +536,13 @@ def main():
                         help="let end A turn about its fixed position in the releases")
     parser.add_argument("--yarn", action="store_true",
                         help="the 3x1 yarn knot (Sect. 7.3) instead; --elements then counts per fibre")
+    parser.add_argument("--no-clamp", action="store_true",
+                        help="with --yarn: no clamping beams, the loop threaded in one stage")
     args = parser.parse_args()
     if args.yarn:
         elements = args.elements or 100
-        scenario = nodus.Scenario(yarn_knot_scenario(elements, args.force))
-        arguments = f"--yarn --elements {elements} --force {args.force:g}"
+        scenario = nodus.Scenario(yarn_knot_scenario(elements, args.force, clamp=not args.no_clamp))
+        arguments = f"--yarn --elements {elements} --force {args.force:g}" + (" --no-clamp" if args.no_clamp else "")
         sys.stdout.write(YARN_HEADER.format(elements=elements, arguments=arguments, twist=YARN_TWIST,
                                             force=args.force) + scenario.to_yaml())
         return
