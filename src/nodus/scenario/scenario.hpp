@@ -655,7 +655,6 @@ struct FrictionPair {
   std::vector<int> beams;  ///< indices into Scenario::beams, non-empty
   std::vector<int> with;   ///< indices into Scenario::beams; empty: any beam
   double friction = 0.0;   ///< mu [-], >= 0
-  int line = 0;            ///< line of the entry in the file (for messages)
 
   /// Whether the contacts between beams i and j (in either order) take this coefficient.
   bool applies(int i, int j) const {

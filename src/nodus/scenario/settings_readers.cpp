@@ -60,7 +60,6 @@ ContactSettings read_contact(const Reader& reader, const MapView& top, const Nam
     for (const Field& item : reader.list(*value, false)) {
       const MapView entry(reader, item);
       FrictionPair pair;
-      pair.line = item.line;
       pair.beams = beam_list(entry.require("beams"), "contact.friction_pairs[].beams");
       if (const auto with = entry.get("with")) pair.with = beam_list(*with, "contact.friction_pairs[].with");
       pair.friction = reader.number(entry.require("friction"), [](double v) { return v >= 0.0; });
