@@ -313,7 +313,9 @@ def render_yarn_states(states, path, title, radius, separation, elev=kv.DEFAULT_
     fig = plt.figure(figsize=(width, 6.0))
     axes, shown, titles = [], [], []
     for k, state in enumerate(states):
-        beams = kv.read_beams(state.folder / "final_nodes.csv")
+        # The yarn alone, as the paper's figures show it: the clamping beams are lifted away by then (the stage
+        # views, view3d_stage_*.png, show them).
+        beams = [b for b in kv.read_beams(state.folder / "final_nodes.csv") if b.name in state.fibres]
         ax = fig.add_axes([(k % columns) / columns, 0.0, 1.0 / columns, 0.8], projection="3d")
         shown.append(draw_yarn_panel(ax, beams, list(state.fibres), state.contact,
                                      knot_contacts(state, separation), radius, elev, azim))
