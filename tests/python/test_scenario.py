@@ -41,6 +41,20 @@ def test_branches_survive_the_round_trip(tmp_path):
     assert nodus.Scenario.from_yaml(again).canonical_text() == s.canonical_text()
 
 
+def test_friction_pairs_survive_the_round_trip(tmp_path):
+    d = nodus.Scenario.from_yaml(EXAMPLES / "tool_drag.yaml").to_dict()
+    d["contact"]["friction_pairs"] = [{"beams": ["tool"], "with": ["beam"], "friction": 0.05}]
+    s = nodus.Scenario(d)
+    assert "contact.friction_pairs[0].friction = 0.050000000000000003" in s.canonical_text()
+    assert "- {beams: [tool], with: [beam], friction: 0.05}" in s.describe()
+    written = tmp_path / "pairs.yaml"
+    s.to_yaml(written)
+    assert nodus.Scenario.from_yaml(written).canonical_text() == s.canonical_text()
+    d["contact"]["friction_pairs"][0]["beams"] = ["tol"]
+    with pytest.raises(nodus.ScenarioError, match=r"contact.friction_pairs\[0\].beams\[0\]: expected the name of a beam"):
+        nodus.Scenario(d)
+
+
 def test_to_dict_is_a_copy():
     s = nodus.Scenario.from_yaml(EXAMPLES / "tool_drag.yaml")
     d = s.to_dict()
