@@ -5,6 +5,7 @@
 /// friction: the committed reversible displacement of each element.
 
 #include <optional>
+#include <stdexcept>
 #include <vector>
 
 #include <Eigen/Core>
@@ -51,6 +52,10 @@ class ContactTerm final : public model::Term {
   /// Friction coefficients per pair of beams, `coefficients[i * num_beams + j]` for beams i and j, in place
   /// of the law's own (set_laws; with a law only); empty: the law's for every pair.
   void set_pair_friction(std::vector<double> coefficients, int num_beams) {
+    // The table is built from the scenario's beams and read with the model's beam indices.
+    if (!coefficients.empty() &&
+        coefficients.size() != static_cast<std::size_t>(num_beams) * static_cast<std::size_t>(num_beams))
+      throw std::invalid_argument("ContactTerm::set_pair_friction: expected num_beams^2 coefficients");
     pair_friction_ = std::move(coefficients);
     num_beams_ = num_beams;
   }
