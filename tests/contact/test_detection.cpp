@@ -385,6 +385,49 @@ TEST(Detection, HairpinPairsOnlyPartsFartherApartThanTheSeparationDistance) {
   EXPECT_TRUE(detect(m, x, no_self).zones.empty());
 }
 
+/// A zone of a beam with itself whose intervals meet, [a, b] = [s0 - 1, s0] with [c, d] = [s0 + 1, s0], on a
+/// circular arc: the bisector's equation (the centre line normal to the pair's mean tangent) holds for every
+/// pair (s0 - u, s0 + u) by symmetry, down to sections 0.1 mm apart, which report a penetration, and to the
+/// section paired with itself at u = 0, where the centre line vanishes. Detection pairs no points of one beam
+/// closer than delta_separ (Eq. 29), delta_separ - l_p with its zones' padding; nor may an element.
+TEST(Detection, NoElementPairsSectionsOfOneBeamCloserThanTheSeparationDistance) {
+  const double rho = 2.0, radius = 0.1, length = 6.0, s0 = 3.0;
+  model::Model m;
+  m.add_beam(beam_definition(length, radius, 120));
+  Eigen::VectorXd x = m.reference();
+  const auto arc = [=](double s) -> Vec3 {
+    return Vec3(rho * std::sin(s / rho), rho * std::cos(s / rho), 0.0);
+  };
+  place_beam(m, x, 0, arc, constant(Vec3::UnitZ()));
+  ProximityZone zone;
+  zone.beam_i = zone.beam_j = 0;
+  zone.a = s0 - 1.0;
+  zone.b = s0;
+  zone.c = s0 + 1.0;
+  zone.d = s0;
+  const double separation = defaults(m).separation_distance - defaults(m).matching_length;  // 0.753 mm
+  int near = 0, far = 0;
+  for (int k = 0; k <= 20; ++k) {
+    const double zeta = 0.05 * k;
+    ContactElement any, kept;
+    const bool built = contact_element_at(m, x, zone, zeta, any, SectionPairing::bisector);
+    const bool built_kept = contact_element_at(m, x, zone, zeta, kept, SectionPairing::bisector, separation);
+    if (!built) continue;
+    const double apart = any.particle_j.abscissa - any.particle_i.abscissa;
+    EXPECT_NEAR(apart, 2.0 * (1.0 - zeta), 1e-6);  // the symmetric pair
+    if (apart < separation) {
+      ++near;
+      EXPECT_FALSE(built_kept) << "zeta " << zeta << ": sections " << apart << " mm apart";
+    } else {
+      ++far;
+      ASSERT_TRUE(built_kept);
+      EXPECT_EQ(kept.gap, any.gap);
+    }
+  }
+  EXPECT_GE(near, 6);  // closer pairs exist without the limit: 0.7 mm down to 0.1 mm apart
+  EXPECT_GE(far, 5);
+}
+
 /// Two fibres side by side (axes 2 w apart in the plane of the loop) along the alpha loop's centreline: the
 /// yarn of a knot. Where the loop crosses itself (the parts D apart in z), each fibre's later part crosses
 /// both fibres' earlier part: fibre I's later part passes over fibre J's earlier part, which lies along fibre

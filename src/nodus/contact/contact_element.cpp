@@ -113,10 +113,10 @@ bool bisector_pair(const BeamCurves& curves, const ProximityZone& zone, double& 
 }
 
 /// The contact element at relative abscissa zeta of `zone` (Eq. 33-45), its sections paired by `pairing`;
-/// false if the plane normal to the intermediate geometry misses one of the axes (bisector: no pair is found)
-/// or the axes meet.
+/// false if the plane normal to the intermediate geometry misses one of the axes (bisector: no pair is
+/// found), the axes meet, or the sections of one beam lie less than `self_separation` apart.
 bool make_element(const BeamCurves& curves, const ProximityZone& zone, double zeta, SectionPairing pairing,
-                  ContactElement& out) {
+                  double self_separation, ContactElement& out) {
   const int bi = zone.beam_i, bj = zone.beam_j;
   double s_i = zone.a + zeta * (zone.b - zone.a);
   double s_j = zone.c + zeta * (zone.d - zone.c);
@@ -140,6 +140,12 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
     return v >= lo - margin && v <= hi + margin;
   };
   if (!inside(s_i, zone.a, zone.b) || !inside(s_j, zone.c, zone.d)) return false;
+  // Two sections of one beam closer along its axis than detection pairs points (delta_separ, Eq. 29, less the
+  // zones' padding l_p) are not two parts of the beam pressing on each other. In a zone of a tightly coiled
+  // part the bisector's equation has the trivial root s_i = s_j (the centre line vanishes): in the knot
+  // pulled at 3.4 N an element paired s = 7.8598 mm with itself, a gap of -2R that refused every step as a
+  // surface passing through (docs/knot.md, "4 N").
+  if (bi == bj && std::abs(s_i - s_j) < self_separation) return false;
   const SectionGeometry gi = curves.at(bi, s_i), gj = curves.at(bj, s_j);
 
   Eigen::Vector3d d, normal;
@@ -171,13 +177,14 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
 }  // namespace
 
 std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count,
-                                          SectionPairing pairing) {
+                                          SectionPairing pairing, double self_separation) {
   const double step = 1.0 / (count - 1);
   std::vector<ContactElement> uniform;
   std::size_t smallest = 0;
   for (int i = 0; i < count; ++i) {
     ContactElement e;
-    if (!make_element(curves, zone, static_cast<double>(i) / (count - 1), pairing, e)) continue;
+    if (!make_element(curves, zone, static_cast<double>(i) / (count - 1), pairing, self_separation, e))
+      continue;
     if (!uniform.empty() && e.gap < uniform[smallest].gap) smallest = uniform.size();
     uniform.push_back(e);
   }
@@ -197,14 +204,15 @@ std::vector<ContactElement> zone_elements(const BeamCurves& curves, const Proxim
   std::vector<ContactElement> shifted;
   for (int i = 0; anchor + i * step <= 1.0 + 1e-12; ++i) {
     ContactElement e;
-    if (make_element(curves, zone, std::min(1.0, anchor + i * step), pairing, e)) shifted.push_back(e);
+    if (make_element(curves, zone, std::min(1.0, anchor + i * step), pairing, self_separation, e))
+      shifted.push_back(e);
   }
   return shifted;
 }
 
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
-                        double zeta, ContactElement& out, SectionPairing pairing) {
-  return make_element(BeamCurves(model, x), zone, zeta, pairing, out);
+                        double zeta, ContactElement& out, SectionPairing pairing, double self_separation) {
+  return make_element(BeamCurves(model, x), zone, zeta, pairing, self_separation, out);
 }
 
 bool update_normal(const model::Model& model, const Eigen::VectorXd& x, ContactElement& e, bool facing,

@@ -44,16 +44,22 @@ struct ContactElement {
 };
 
 /// The `count` contact elements of `zone` in the state of `curves` (Eq. 46-48; see contact_element.cpp for
-/// how the grid is placed), their sections paired by `pairing`; the `zone` field of each is left 0.
+/// how the grid is placed), their sections paired by `pairing`; the `zone` field of each is left 0. In a zone
+/// of a beam with itself, no element pairs two sections less than `self_separation` apart along the axis
+/// (detection: delta_separ - l_p, the least distance of the points it pairs on one beam, Eq. 29, within its
+/// zones' padding).
 std::vector<ContactElement> zone_elements(const BeamCurves& curves, const ProximityZone& zone, int count,
-                                          SectionPairing pairing = SectionPairing::plane);
+                                          SectionPairing pairing = SectionPairing::plane,
+                                          double self_separation = 0.0);
 
 /// The contact element at relative abscissa `zeta` in [0, 1] of `zone` in state `x` (Eq. 33-45), built as
 /// detect() builds the elements of a zone (the `zone` field of `out` is left as it is). False if the plane
 /// normal to the intermediate geometry misses one of the two axes (with SectionPairing::bisector: if no pair
-/// of sections on the line of zeta has its centre line normal to their mean tangent).
+/// of sections on the line of zeta has its centre line normal to their mean tangent), or if, in a zone of a
+/// beam with itself, the two sections lie less than `self_separation` apart along the axis.
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
-                        double zeta, ContactElement& out, SectionPairing pairing = SectionPairing::plane);
+                        double zeta, ContactElement& out, SectionPairing pairing = SectionPairing::plane,
+                        double self_separation = 0.0);
 
 /// Recomputes, in state `x`, the normal of contact element `e` for its particles as they are (Eq. 41-44; the
 /// fixed point on normal directions of Sect. 6), with its positions and gap. False if it is undefined.

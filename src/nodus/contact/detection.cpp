@@ -51,7 +51,8 @@ ContactGeometry detect(const model::Model& model, const Eigen::VectorXd& x,
                                                 model.beam(zone.beam_j).element_length());
     const int count = std::max(
         2, static_cast<int>(std::ceil(std::min(zone.b - zone.a, std::abs(zone.d - zone.c)) / spacing)));
-    built[static_cast<std::size_t>(k)] = zone_elements(curves, zone, count, prm.pairing);
+    built[static_cast<std::size_t>(k)] =
+        zone_elements(curves, zone, count, prm.pairing, prm.separation_distance - prm.matching_length);
   }
 
   ContactGeometry result;
