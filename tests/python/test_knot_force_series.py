@@ -85,3 +85,41 @@ def test_bad_forces_fail_with_one_line(series, tmp_path, capsys, forces):
     err = capsys.readouterr().err.strip().splitlines()
     assert len(err) == 1 and err[0].startswith("knot_force_series: --forces: expected")
     assert not any(tmp_path.iterdir())  # nothing written
+
+
+def test_travel_to_a_force_is_read_where_the_reaction_first_reaches_it(series, tmp_path):
+    # `hold` ends at load time 14 s; end B then travels at 0.1 mm/s. The reaction first reaches 4 N at 20.25 s:
+    # a travel of 0.625 mm (not at 20.5 s, where it is higher, nor where it falls back below later).
+    path = tmp_path / "steps.csv"
+    path.write_text("step,stage,time,end_b_fx\n1,settle,13,0\n2,hold,13.5,1.0\n3,hold,14,2.0\n"
+                    "4,drive,17,3.1\n5,drive,20.25,4.02\n6,drive,20.5,4.1\n7,drive,21,3.9\n")
+    assert series.travel_to(path, 4.0) == pytest.approx(0.625, abs=1e-12)
+    assert math.isnan(series.travel_to(path, 4.5))  # never reached
+    assert math.isnan(series.travel_to(tmp_path / "missing.csv", 4.0))
+
+
+def test_driven_scenario_holds_end_b_drives_it_and_releases_its_support(series):
+    scenario = series.driven_scenario(300, 2.0, "bisector", 0.62, True)
+    main = series.knot_program.knot_scenario(300, 2.0, tighten_line_search=True, section_pairing="bisector")
+    assert scenario["stages"] == main["stages"]  # the knot tightened at 2 N, as the series' 2 N run
+    driven, released = scenario["branches"]
+    assert driven["name"] == "driven" and released["name"] == "driven_mu_0.30"
+    assert driven["from"] == released["from"] == "settle"
+    hold, drive, keep = driven["stages"]
+    assert hold["activate"] == ["end_b"] and hold["loads"] == {"pull_b": {"force": [0, 0, 0]}}
+    assert drive["motions"] == {"end_b": {"translation": [0.62, 0, 0]}}
+    assert drive["duration"] == pytest.approx(6.2) and drive["steps"] == 62  # 0.1 mm/s, 0.01 mm a step
+    assert "motions" not in keep and "loads" not in keep
+    assert released["stages"][:3] == [hold, drive, keep] and released["contact"] == {"friction": 0.3}
+    release, rest = released["stages"][3:]
+    assert release["release"] == ["end_b"] and rest["stabilization_end"] == 0
+    assert [b["name"] for b in series.driven_scenario(300, 2.0, "bisector", 0.62, False)["branches"]] == ["driven"]
+
+
+@pytest.mark.parametrize("arguments", [["--driven", "2"], ["--driven", "1.5"], ["--driven", "4,x"],
+                                       ["--driven", "4", "--driven-from", "0"]])
+def test_bad_driven_forces_fail_with_one_line(series, tmp_path, capsys, arguments):
+    assert series.main(["knot_force_series.py", str(tmp_path), "--forces", ""] + arguments) == 2
+    err = capsys.readouterr().err.strip().splitlines()
+    assert len(err) == 1 and err[0].startswith("knot_force_series: --driven: expected")
+    assert not any(tmp_path.iterdir())  # nothing written
