@@ -14,7 +14,7 @@ paper uses 58 elements, Fig. 14), and the clearance of the axes (steps.csv min_c
 the sections' reach, over pairs more than delta_separ apart) in the state and the smallest over the steps that
 led to it: the contact elements' own penetrations do not show an overlap that falls between them.
 
-Pulled by a force, the knot gives way at about 3.6 N (docs/knot.md, "4 N is not reached"). --driven F pulls
+Pulled by a force, the knot gives way at about 3.6 N (docs/knot.md, "The tightening force"). --driven F pulls
 it to F by displacement instead: from the knot tightened at --driven-from (2 N), end B is held where it is while
 its force is taken off (`hold`, the support's reaction takes the pull over), then moved along +x at 0.1 mm/s
 (`drive`) and held still (`keep`, as `settle`). A first run (`probe`) drives end B by up to 1.5 mm and gives

@@ -144,7 +144,7 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
   // zones' padding l_p) are not two parts of the beam pressing on each other. In a zone of a tightly coiled
   // part the bisector's equation has the trivial root s_i = s_j (the centre line vanishes): in the knot
   // pulled at 3.4 N an element paired s = 7.8598 mm with itself, a gap of -2R that refused every step as a
-  // surface passing through (docs/knot.md, "4 N").
+  // surface passing through (docs/knot.md, "The tightening force").
   if (bi == bj && std::abs(s_i - s_j) < self_separation) return false;
   const SectionGeometry gi = curves.at(bi, s_i), gj = curves.at(bj, s_j);
 
