@@ -27,7 +27,7 @@ Usage: scripts/knot_force_series.py OUT [--forces 0.5,1,2,4] [--elements 300] [-
                                         [--driven 4] [--driven-from 2]
   OUT/force_F/knot.yaml    the scenario of force F; OUT/force_F/ its run (a finished run is not run again,
                            an interrupted one is resumed)
-  OUT/driven_F/probe.yaml, knot.yaml and their runs probe/, run/: the displacement-driven pull to F
+  OUT/driven_F/probe.yaml, run.yaml and their runs probe/, run/: the displacement-driven pull to F
   OUT/force_series.csv     one row per force and state; also printed as a markdown table
 Requires python3-numpy and python3-matplotlib (Debian) and the nodus module (PYTHONPATH=build/release/python).
 """
