@@ -24,7 +24,8 @@ reaction to 0 for mu = 0.3 (release, rest) as the force-driven releases do.
 
 Usage: scripts/knot_force_series.py OUT [--forces 0.5,1,2,4] [--elements 300] [--no-release]
                                         [--nodus build/release/nodus] [--jobs N] [--section-pairing P]
-                                        [--driven 4] [--driven-from 2]
+                                        [--driven 4.1] [--driven-from 2]
+  (--forces "" --driven 4.1: the driven pull alone)
   OUT/force_F/knot.yaml    the scenario of force F; OUT/force_F/ its run (a finished run is not run again,
                            an interrupted one is resumed)
   OUT/driven_F/probe.yaml, run.yaml and their runs probe/, run/: the displacement-driven pull to F
@@ -34,6 +35,7 @@ Requires python3-numpy and python3-matplotlib (Debian) and the nodus module (PYT
 
 import argparse
 import csv
+import math
 import os
 import signal
 import subprocess
@@ -85,7 +87,8 @@ def run_force(out, force, elements, release, nodus_binary, jobs, pairing="bisect
     return folder / "run"
 
 
-DRIVE_RATE = 0.1  # mm of end B's travel per s of load time, 0.01 mm a step
+DRIVE_RATE = 0.1  # mm of end B's travel per s of load time
+DRIVE_STEP = 0.01  # mm of travel a step
 PROBE_TRAVEL = 1.5  # mm
 
 
@@ -95,7 +98,7 @@ def driven_scenario(elements, base_force, pairing, travel, release):
     scenario = knot_program.knot_scenario(elements, base_force, tighten_line_search=True, section_pairing=pairing)
     hold = {"name": "hold", "steps": 10, "stabilization": 0.01, "line_search": True, "activate": ["end_b"],
             "loads": {"pull_b": {"force": [0, 0, 0]}}}
-    steps = max(1, round(travel / (DRIVE_RATE * 0.1)))
+    steps = max(1, round(travel / DRIVE_STEP))
     drive = {"name": "drive", "steps": steps, "duration": knot_program.num(travel / DRIVE_RATE),
              "stabilization": 0.01, "line_search": True,
              "motions": {"end_b": {"translation": [knot_program.num(travel), 0, 0]}}}
@@ -138,13 +141,19 @@ def travel_to(steps_csv, force):
         return float("nan")
     with open(steps_csv, newline="") as f:
         rows = list(csv.DictReader(f))
-    held = [r for r in rows if r["stage"] == "hold"]
+    def number(row, key):  # the file is read while nodus writes it: a last line may be partial
+        try:
+            return float(row.get(key) or "nan")
+        except ValueError:
+            return float("nan")
+
+    held = [r for r in rows if r.get("stage") == "hold"]
     if not held:
         return float("nan")
-    start = float(held[-1]["time"])
+    start = number(held[-1], "time")
     for r in rows:
-        if r["stage"] == "drive" and float(r["end_b_fx"]) >= force:
-            return DRIVE_RATE * (float(r["time"]) - start)
+        if r.get("stage") == "drive" and number(r, "end_b_fx") >= force:
+            return DRIVE_RATE * (number(r, "time") - start)
     return float("nan")
 
 
@@ -158,15 +167,27 @@ def run_driven(out, force, base_force, elements, release, nodus_binary, jobs, pa
     if not np.isfinite(travel) and not (probe / "summary.json").is_file():
         # The probe is stopped once its reaction has reached the force: the knot held further may slip (at
         # about 4.2 N, docs/knot.md), and only the travel to the force is wanted.
-        # Its own process group: the branch runs in a child of `nodus run`, stopped with it.
+        # Its own process group (with --jobs above 1 the branch runs in a child of `nodus run`), stopped as a
+        # whole, also when this script is interrupted.
         process = subprocess.Popen(nodus_command(nodus_binary, path, probe, jobs), start_new_session=True)
-        while process.poll() is None:
-            time.sleep(2.0)
-            travel = travel_to(steps, force)
-            if np.isfinite(travel):
+        try:
+            while process.poll() is None:
+                time.sleep(2.0)
+                if np.isfinite(travel_to(steps, force)):
+                    break
+        finally:
+            if process.poll() is None:
                 os.killpg(process.pid, signal.SIGTERM)
-                process.wait()
+                try:
+                    process.wait(timeout=30)
+                except subprocess.TimeoutExpired:
+                    os.killpg(process.pid, signal.SIGKILL)
+                    process.wait()
         travel = travel_to(steps, force)
+        if not np.isfinite(travel) and not (probe / "summary.json").is_file():
+            print(f"driven {force:g} N: the probe stopped before its reaction reached {force:g} N (exit status "
+                  f"{process.returncode}); run again to resume it", file=sys.stderr)
+            return None
     if not np.isfinite(travel):
         print(f"driven {force:g} N: the probe's reaction never reached {force:g} N", file=sys.stderr)
         return None
@@ -194,8 +215,11 @@ def measure(force, run_dir, driven=False):
     for name, folder, _ in knot_report.find_branches(run_dir, summary):
         states.append((folder, name, knot_report.read_summary(folder)))
     if driven:
-        with open(run_dir / "branches" / "driven" / "steps.csv", newline="") as f:
-            kept = [r for r in csv.DictReader(f) if r["stage"] == "keep"]
+        steps = run_dir / "branches" / "driven" / "steps.csv"
+        kept = []
+        if steps.is_file():
+            with open(steps, newline="") as f:
+                kept = [r for r in csv.DictReader(f) if r["stage"] == "keep"]
         if kept:
             force = float(kept[-1]["end_b_fx"])
         states = [(folder, "tightened, end B held" if name == "driven" else name.replace("driven_", ""), own)
@@ -250,18 +274,22 @@ def main(argv):
     lists = {}
     for option, text in (("--forces", args.forces), ("--driven", args.driven)):
         try:
-            lists[option] = [float(f) for f in text.split(",") if f.strip()]
+            lists[option] = [] if not text.strip() else [float(f) for f in text.split(",")]
         except ValueError:
             print(f"knot_force_series: {option}: expected numbers separated by commas, got {text}", file=sys.stderr)
             return 2
-        if lists[option] and min(lists[option]) <= 0:
+        if lists[option] and not all(math.isfinite(f) and f > 0 for f in lists[option]):
             print(f"knot_force_series: {option}: expected positive forces, got {text}", file=sys.stderr)
             return 2
     forces, driven = lists["--forces"], lists["--driven"]
     if not forces and not driven:
         print("knot_force_series: --forces: expected at least one force (or --driven)", file=sys.stderr)
         return 2
-    if not args.driven_from > 0 or any(f <= args.driven_from for f in driven):
+    if not (math.isfinite(args.driven_from) and args.driven_from > 0):
+        print(f"knot_force_series: --driven-from: expected a positive force, got {args.driven_from:g}",
+              file=sys.stderr)
+        return 2
+    if any(f <= args.driven_from for f in driven):
         print(f"knot_force_series: --driven: expected forces above --driven-from ({args.driven_from:g} N), got "
               f"{args.driven}", file=sys.stderr)
         return 2

@@ -110,16 +110,25 @@ def test_driven_scenario_holds_end_b_drives_it_and_releases_its_support(series):
     assert drive["motions"] == {"end_b": {"translation": [0.62, 0, 0]}}
     assert drive["duration"] == pytest.approx(6.2) and drive["steps"] == 62  # 0.1 mm/s, 0.01 mm a step
     assert "motions" not in keep and "loads" not in keep
-    assert released["stages"][:3] == [hold, drive, keep] and released["contact"] == {"friction": 0.3}
+    assert [st["name"] for st in released["stages"]] == ["hold", "drive", "keep", "release", "rest"]
+    assert released["stages"][1]["motions"] == drive["motions"] and released["contact"] == {"friction": 0.3}
     release, rest = released["stages"][3:]
     assert release["release"] == ["end_b"] and rest["stabilization_end"] == 0
     assert [b["name"] for b in series.driven_scenario(300, 2.0, "bisector", 0.62, False)["branches"]] == ["driven"]
 
 
-@pytest.mark.parametrize("arguments", [["--driven", "2"], ["--driven", "1.5"], ["--driven", "4,x"],
-                                       ["--driven", "4", "--driven-from", "0"]])
-def test_bad_driven_forces_fail_with_one_line(series, tmp_path, capsys, arguments):
+@pytest.mark.parametrize("arguments, option", [
+    (["--driven", "2"], "--driven"), (["--driven", "1.5"], "--driven"), (["--driven", "4,x"], "--driven"),
+    (["--driven", "4,,5"], "--driven"), (["--driven", "nan"], "--driven"),
+    (["--driven", "4", "--driven-from", "0"], "--driven-from"), ([], "--forces")])
+def test_bad_driven_forces_fail_with_one_line(series, tmp_path, capsys, arguments, option):
     assert series.main(["knot_force_series.py", str(tmp_path), "--forces", ""] + arguments) == 2
     err = capsys.readouterr().err.strip().splitlines()
-    assert len(err) == 1 and err[0].startswith("knot_force_series: --driven: expected")
+    assert len(err) == 1 and err[0].startswith(f"knot_force_series: {option}: expected")
     assert not any(tmp_path.iterdir())  # nothing written
+
+
+def test_travel_to_skips_a_partly_written_last_line(series, tmp_path):
+    path = tmp_path / "steps.csv"
+    path.write_text("step,stage,time,end_b_fx\n1,hold,14,2.0\n2,drive,14.5,2.5\n3,drive,15")  # no end_b_fx yet
+    assert math.isnan(series.travel_to(path, 4.0))

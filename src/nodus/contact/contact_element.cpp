@@ -140,11 +140,11 @@ bool make_element(const BeamCurves& curves, const ProximityZone& zone, double ze
     return v >= lo - margin && v <= hi + margin;
   };
   if (!inside(s_i, zone.a, zone.b) || !inside(s_j, zone.c, zone.d)) return false;
-  // Two sections of one beam closer along its axis than detection pairs points (delta_separ, Eq. 29, less the
-  // zones' padding l_p) are not two parts of the beam pressing on each other. In a zone of a tightly coiled
-  // part the bisector's equation has the trivial root s_i = s_j (the centre line vanishes): in the knot
-  // pulled at 3.4 N an element paired s = 7.8598 mm with itself, a gap of -2R that refused every step as a
-  // surface passing through (docs/knot.md, "The tightening force").
+  // Two sections of one beam closer along its axis than detection pairs points (delta_separ, Eq. 29, less
+  // l_p, the zones' padding at both ends) are not two parts of the beam pressing on each other. In a zone of
+  // a tightly coiled part the bisector's equation has the trivial root s_i = s_j (the centre line vanishes):
+  // in the knot pulled at 3.4 N an element paired s = 7.8598 mm with itself, a gap of -2R that refused every
+  // step as a surface passing through (docs/knot.md, "The tightening force").
   if (bi == bj && std::abs(s_i - s_j) < self_separation) return false;
   const SectionGeometry gi = curves.at(bi, s_i), gj = curves.at(bj, s_j);
 

@@ -53,10 +53,11 @@ std::vector<ContactElement> zone_elements(const BeamCurves& curves, const Proxim
                                           double self_separation = 0.0);
 
 /// The contact element at relative abscissa `zeta` in [0, 1] of `zone` in state `x` (Eq. 33-45), built as
-/// detect() builds the elements of a zone (the `zone` field of `out` is left as it is). False if the plane
-/// normal to the intermediate geometry misses one of the two axes (with SectionPairing::bisector: if no pair
-/// of sections on the line of zeta has its centre line normal to their mean tangent), or if, in a zone of a
-/// beam with itself, the two sections lie less than `self_separation` apart along the axis.
+/// detect() builds the elements of a zone, which passes delta_separ - l_p as `self_separation` (the `zone`
+/// field of `out` is left as it is). False if the plane normal to the intermediate geometry misses one of the
+/// two axes (with SectionPairing::bisector: if no pair of sections on the line of zeta has its centre line
+/// normal to their mean tangent), or if, in a zone of a beam with itself, the two sections lie less than
+/// `self_separation` apart along the axis.
 bool contact_element_at(const model::Model& model, const Eigen::VectorXd& x, const ProximityZone& zone,
                         double zeta, ContactElement& out, SectionPairing pairing = SectionPairing::plane,
                         double self_separation = 0.0);
