@@ -70,21 +70,11 @@ def run_force(out, force, elements, release, nodus_binary, jobs, pairing="bisect
     scenario["branches"] = [b for b in scenario["branches"] if b["name"] == "mu_0.30"] if release else []
     if not scenario["branches"]:
         del scenario["branches"]
-    path = folder / "knot.yaml"
-    text = knot_program.nodus.Scenario(scenario).to_yaml()
-    if path.is_file() and path.read_text() != text and (folder / "run").exists():
-        raise ValueError(f"{folder / 'run'} holds a run of another scenario than {path} would now say "
-                         f"(another --elements or --section-pairing?): give another OUT")
-    if not path.is_file() or path.read_text() != text:
-        path.write_text(text)
-    summary = folder / "run" / "summary.json"
-    if not summary.is_file():
-        command = [nodus_binary, "run", str(path), "--out", str(folder / "run"), "--jobs", str(jobs), "--quiet"]
-        if (folder / "run" / "checkpoints").is_dir():
-            command.append("--resume")
-        print(f"force {force:g} N: {' '.join(command)}", flush=True)
-        subprocess.run(command, check=False)
-    return folder / "run"
+    path, run = folder / "knot.yaml", folder / "run"
+    write_scenario(path, run, scenario)
+    if not (run / "summary.json").is_file():
+        subprocess.run(nodus_command(nodus_binary, path, run, jobs), check=False)
+    return run
 
 
 DRIVE_RATE = 0.1  # mm of end B's travel per s of load time
@@ -114,16 +104,15 @@ def driven_scenario(elements, base_force, pairing, travel, release):
     return scenario
 
 
-def write_scenario(folder, name, scenario):
-    """Writes folder/name.yaml (refusing a folder that holds a run of another scenario); the run's folder."""
-    folder.mkdir(parents=True, exist_ok=True)
-    path, out = folder / f"{name}.yaml", folder / name
+def write_scenario(path, out, scenario):
+    """Writes `scenario` to `path`, refused (ValueError, nothing written) where `out` holds a run of another."""
+    path.parent.mkdir(parents=True, exist_ok=True)
     text = knot_program.nodus.Scenario(scenario).to_yaml()
     if path.is_file() and path.read_text() != text and out.exists():
-        raise ValueError(f"{out} holds a run of another scenario than {path} would now say: give another OUT")
+        raise ValueError(f"{out} holds a run of another scenario than {path} would now say "
+                         f"(another --elements or --section-pairing?): give another OUT")
     if not path.is_file() or path.read_text() != text:
         path.write_text(text)
-    return path, out
 
 
 def nodus_command(nodus_binary, path, out, jobs):
@@ -160,8 +149,8 @@ def travel_to(steps_csv, force):
 def run_driven(out, force, base_force, elements, release, nodus_binary, jobs, pairing):
     """The run of the knot driven to `force` (None if the probe's reaction never reaches it)."""
     folder = out / f"driven_{force:g}"
-    path, probe = write_scenario(folder, "probe",
-                                 driven_scenario(elements, base_force, pairing, PROBE_TRAVEL, False))
+    path, probe = folder / "probe.yaml", folder / "probe"
+    write_scenario(path, probe, driven_scenario(elements, base_force, pairing, PROBE_TRAVEL, False))
     steps = probe / "branches" / "driven" / "steps.csv"
     travel = travel_to(steps, force)
     if not np.isfinite(travel) and not (probe / "summary.json").is_file():
@@ -193,7 +182,8 @@ def run_driven(out, force, base_force, elements, release, nodus_binary, jobs, pa
         return None
     travel = round(travel, 4)
     print(f"driven {force:g} N: end B driven by {travel:g} mm", flush=True)
-    path, run = write_scenario(folder, "run", driven_scenario(elements, base_force, pairing, travel, release))
+    path, run = folder / "run.yaml", folder / "run"
+    write_scenario(path, run, driven_scenario(elements, base_force, pairing, travel, release))
     if not (run / "summary.json").is_file():
         subprocess.run(nodus_command(nodus_binary, path, run, jobs), check=False)
     return run
