@@ -8,6 +8,11 @@
 //                             tangent
 //   BM_ContactFactorizeSolve  factorisation and solve by each sparse direct solver (analysis once, outside
 //                             the loop)
+//   BM_ContactNewtonIteration one whole Newton iteration with `cholmod` (the bundles' solver): evaluate,
+//                             factorise, solve, each part timed (counters assembly_ms, factorize_ms,
+//                             solve_ms), the ratio of the iteration to its factorisation (iteration_ratio),
+//                             and the Cholesky factor's non-zeros and flops by CHOLMOD's analysis (METIS
+//                             ordering)
 //   BM_ContactInstall         EquilibriumProblem::set_contact after a detection: /0 the same beam elements in
 //                             contact (the pattern is kept: its blocks' adjacency compared), /1 one zone's
 //                             elements more or fewer than the last time (a new pattern is built); the
@@ -20,6 +25,7 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <Eigen/CholmodSupport>
 
 #include "bundle_problem.hpp"
 #include "nodus/contact/detection.hpp"
@@ -103,6 +109,55 @@ void BM_ContactFactorizeSolve(benchmark::State& state) {
   state.SetLabel(linear->name());
 }
 
+/// One Newton iteration as NewtonSolver spends it without a line search: the residual and the tangent in one
+/// pass, one factorisation (the pattern analysed once, outside the loop, as a run does until its contact
+/// pattern changes), one solve. The ratio iteration / factorisation is what issue 17 asks to keep at 1.3 or
+/// below.
+void BM_ContactNewtonIteration(benchmark::State& state) {
+  Setup s(static_cast<int>(state.range(0)));
+  auto linear = nodus::solver::make_linear_solver(nodus::solver::LinearSolverKind::cholmod);
+  Eigen::VectorXd r, du;
+  s.problem->evaluate(r, true);
+  linear->analyze(s.problem->tangent());
+  using Clock = std::chrono::steady_clock;
+  const auto ms = [](Clock::time_point a, Clock::time_point b) {
+    return std::chrono::duration<double, std::milli>(b - a).count();
+  };
+  double assembly = 0.0, factorize = 0.0, solve = 0.0;
+  bool ok = true;
+  for (auto _ : state) {
+    const auto t0 = Clock::now();
+    s.problem->evaluate(r, true);
+    const auto t1 = Clock::now();
+    ok = linear->factorize(s.problem->tangent()) && ok;
+    const auto t2 = Clock::now();
+    du = linear->solve(r);
+    const auto t3 = Clock::now();
+    benchmark::DoNotOptimize(du.data());
+    benchmark::ClobberMemory();
+    assembly += ms(t0, t1);
+    factorize += ms(t1, t2);
+    solve += ms(t2, t3);
+  }
+  if (!ok) state.SkipWithError("factorize reported a matrix that is not positive definite");
+  const double n = static_cast<double>(state.iterations());
+  state.counters["assembly_ms"] = assembly / n;
+  state.counters["factorize_ms"] = factorize / n;
+  state.counters["solve_ms"] = solve / n;
+  state.counters["iteration_ratio"] = (assembly + factorize + solve) / factorize;
+  // The factor of this tangent as CHOLMOD's analysis gives it (nnz(L) and the factorisation's flops).
+  Eigen::CholmodSupernodalLLT<nodus::solver::SparseMatrix, Eigen::Upper> llt;
+  cholmod_common& c = llt.cholmod();
+  c.nmethods = 1;
+  c.method[0].ordering = CHOLMOD_METIS;
+  c.postorder = 1;
+  llt.analyzePattern(s.problem->tangent());
+  state.counters["nnz_K"] = static_cast<double>(s.problem->tangent().nonZeros());
+  state.counters["nnz_L"] = c.lnz;
+  state.counters["factor_flops"] = c.fl;
+  set_counters(state, s);
+}
+
 void BM_ContactInstall(benchmark::State& state) {
   Setup s(static_cast<int>(state.range(0)));
   const bool change = state.range(1) != 0;
@@ -158,6 +213,7 @@ BENCHMARK(BM_ContactDetection)->Apply(sizes);
 BENCHMARK(BM_BundleDetection)->Arg(75)->Arg(300)->Arg(1000)->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ContactAssembly)->Apply(sizes);
 BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes_and_solvers);
+BENCHMARK(BM_ContactNewtonIteration)->Apply(sizes)->UseRealTime();
 BENCHMARK(BM_ContactInstall)
     ->ArgsProduct({{7, 27, 75}, {0, 1}})
     ->ArgNames({"fibres", "new_pattern"})

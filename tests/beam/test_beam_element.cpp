@@ -3,7 +3,8 @@
 // a 2-point element: free of strain at its Gauss points, so of energy 0 without the stabilisation and the
 // orientation barrier, and of their closed-form energies with them; the barrier's force and tangent against
 // finite differences between the straight element and its fold; on a circular arc the stabilisation is the
-// documented small fraction of the bending energy.
+// documented small fraction of the bending energy. J^T D J formed without the zeros of J and D is the dense
+// product.
 
 #include <gtest/gtest.h>
 
@@ -89,6 +90,29 @@ TEST(BeamElement, TangentIsDerivativeOfInternalForce) {
     }
   }
   EXPECT_EQ(compared, 20 * kElementDofs * kElementDofs);
+}
+
+TEST(StrainMeasures, JacobianCongruenceIsTheDenseProduct) {
+  // J^T D J without J's and D's zeros against the dense product, for a section stiffness and for a full D
+  // with some entries zeroed (the zeros skipped must be those of D).
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-1.0, 1.0);
+  const SectionMatrix section = section_stiffness(ElasticConstants{4000.0, 0.3}, 0.05, 0.8);
+  for (int trial = 0; trial < 10; ++trial) {
+    KinematicVector y;
+    for (int i = 0; i < kKinematicSize; ++i) y[i] = u(rng);
+    SectionMatrix full;
+    for (int i = 0; i < kNumStrains; ++i)
+      for (int j = 0; j < kNumStrains; ++j) full(i, j) = u(rng) < -0.5 ? 0.0 : 1e3 * u(rng);
+    const StrainJacobian jac = strain_jacobian(y);
+    for (const SectionMatrix& d : {section, full}) {
+      const KinematicMatrix dense = jac.transpose() * d * jac;
+      const double scale = dense.cwiseAbs().maxCoeff();
+      ASSERT_GT(scale, 0.0);
+      EXPECT_LT((strain_jacobian_congruence(y, d) - dense).cwiseAbs().maxCoeff(), 1e-13 * scale)
+          << "trial " << trial;
+    }
+  }
 }
 
 TEST(BeamElement, RigidMotionGivesNoForce) {

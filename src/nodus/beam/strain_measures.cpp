@@ -53,6 +53,30 @@ StrainJacobian strain_jacobian(const KinematicVector& y) {
   return jac;
 }
 
+KinematicMatrix strain_jacobian_congruence(const KinematicVector& y,
+                                           const Eigen::Matrix<double, kNumStrains, kNumStrains>& d) {
+  // Row k of J holds coefficient * y_v^T in block u and coefficient * y_u^T in block v (kMeasures).
+  StrainJacobian dj = StrainJacobian::Zero();  // D J
+  for (int l = 0; l < kNumStrains; ++l) {
+    const auto& m = kMeasures[l];
+    const Eigen::Vector3d a = m.coefficient * y.segment<3>(m.v);
+    const Eigen::Vector3d b = m.coefficient * y.segment<3>(m.u);
+    for (int k = 0; k < kNumStrains; ++k) {
+      const double dkl = d(k, l);
+      if (dkl == 0.0) continue;
+      dj.block<1, 3>(k, m.u) += dkl * a.transpose();
+      dj.block<1, 3>(k, m.v) += dkl * b.transpose();
+    }
+  }
+  KinematicMatrix k = KinematicMatrix::Zero();  // J^T (D J)
+  for (int i = 0; i < kNumStrains; ++i) {
+    const auto& m = kMeasures[i];
+    k.middleRows<3>(m.u).noalias() += (m.coefficient * y.segment<3>(m.v)) * dj.row(i);
+    k.middleRows<3>(m.v).noalias() += (m.coefficient * y.segment<3>(m.u)) * dj.row(i);
+  }
+  return k;
+}
+
 KinematicMatrix weighted_strain_hessian(const StrainVector& w) {
   KinematicMatrix h = KinematicMatrix::Zero();
   for (int k = 0; k < kNumStrains; ++k) {
