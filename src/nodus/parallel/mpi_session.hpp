@@ -2,10 +2,11 @@
 /// The processes of one run: MPI and PETSc, when nodus is built with them (CMake finds Debian's petsc-dev and
 /// OpenMPI; NODUS_HAVE_PETSC). Without them there is one process, rank 0 of 1, and every call here is cheap.
 ///
-/// `mpirun -n N nodus run ...` starts N processes. Each reads the scenario and runs the whole simulation
-/// (model, detection, assembly): only the linear solve is shared, through PETSc (solver.linear_solver:
-/// petsc), whose solution every rank receives bit for bit, so the ranks take the same Newton path. Rank 0
-/// alone writes files and logs (docs/parallel.md).
+/// `mpirun -n N nodus run ...` starts N processes. Each reads the scenario, builds the whole model, detects
+/// contact and holds the whole state; with solver.linear_solver: petsc each rank evaluates the elements of
+/// its range of nodes and assembles those rows of the residual and the tangent, PETSc factorises the
+/// distributed matrix, and every rank receives the solution bit for bit, so the ranks take the same Newton
+/// path. Rank 0 alone writes files and logs (docs/parallel.md, "What runs where").
 
 #include <cstddef>
 #include <string>
