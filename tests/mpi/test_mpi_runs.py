@@ -5,16 +5,23 @@
 
 For each scenario: the serial run as the scenario says (its own linear solver), then the same scenario with
 solver.linear_solver: petsc on 1, 2 and 3 ranks; each must give the same steps, the same contact counts and
-final nodes within 1e-8 mm (compare_runs.py). The scenarios: four verification-type examples and a coarse
-knot (the flagship's program on 60 elements, its stages loop, clamp and thread, scripts/knot_program.py). Then, on 2 ranks: the same for tool_drag with the lagged
-factorisation (solver.reuse_factor, PETSc's GMRES on the kept factor) against that policy in one process; bad input is reported once with exit status
-2 on every rank and nothing written; a run stopped after 7 steps and resumed ends with the files of the run
-never stopped, byte for byte. Needs the nodus Python module (PYTHONPATH) to rewrite the scenarios.
+final nodes within 1e-8 mm (compare_runs.py). The scenarios: four verification-type examples and a coarse knot
+(the flagship's program on 60 elements, its stages loop, clamp and thread, scripts/knot_program.py). Then, on
+2 ranks: the same for tool_drag with the lagged factorisation (solver.reuse_factor, PETSc's GMRES on the kept
+factor) against that policy in one process; LU by SuperLU_dist from the scenario's petsc_options, and MUMPS
+from the command line over them (PETSc's -ksp_view says which factorised), against the serial run; bad input
+is reported once with exit status 2 on every rank and nothing written; a run stopped after 7 steps and resumed
+ends with the files of the run never stopped, byte for byte, and so does a longer run killed (SIGKILL) after
+60 steps and resumed. Needs the nodus Python module (PYTHONPATH) to
+rewrite the scenarios.
 """
 import json
 import os
+import shutil
+import signal
 import subprocess
 import sys
+import time
 from pathlib import Path
 
 import nodus
@@ -131,6 +138,27 @@ def main():
                 failures.append(f"tool_drag with reuse_factor, {where}: {factorizations} factorisations for "
                                 f"{iterations} Newton iterations, {krylov} GMRES iterations")
 
+    # PETSc's options from the scenario (LU by SuperLU_dist) and from the command line, which wins over the
+    # scenario's (MUMPS): PETSc's -ksp_view names the package that factorised; both give the serial answers.
+    options = work / "tool_drag_superlu.yaml"
+    with_solver(examples / "tool_drag.yaml", options, linear_solver="petsc",
+                petsc_options="-pc_type lu -pc_factor_mat_solver_type superlu_dist")
+    for package, extra in [("superlu_dist", []), ("mumps", ["-pc_factor_mat_solver_type", "mumps"])]:
+        out = work / f"tool_drag_{package}_2"
+        r = mpirun(launcher, 2, [exe, "run", str(options), "--out", str(out), "--quiet", "-ksp_view"] + extra)
+        used = {p for p in ("superlu_dist", "mumps")
+                if f"package used to perform factorization: {p}" in r.stdout + r.stderr}
+        if r.returncode != 0 or used != {package}:
+            failures.append(f"tool_drag, {package} on 2 ranks: exit status {r.returncode}, factorised by "
+                            f"{sorted(used)}: {r.stderr[-400:]}")
+            continue
+        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(work / "tool_drag_serial"),
+                            str(out)], capture_output=True, text=True)
+        print(f"tool_drag, {package} on 2 ranks ({'scenario' if not extra else 'command line over scenario'}): "
+              + c.stdout.strip().replace("\n", "; "))
+        if c.returncode != 0:
+            failures.append(f"tool_drag, {package} on 2 ranks, differs from the serial run: {c.stdout}")
+
     # Bad input: one message, status 2 on every rank (mpirun returns a rank's non-zero status), no folder.
     bad = work / "bad.yaml"
     bad.write_text((work / "tool_drag_petsc.yaml").read_text().replace("friction: 0.3", "friction: -1"))
@@ -155,6 +183,48 @@ def main():
         print(f"resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
         if not same:
             failures.append(f"resumed on 2 ranks: {f} differs from the run never stopped")
+
+    # Killed for real (SIGKILL to mpirun and both ranks, mid-run) and resumed on 2 ranks: the files of the run
+    # never stopped. tool_drag with 20 times its steps (320), a checkpoint every 5, so that the kill falls
+    # between checkpoints, or in one, while the ranks are working.
+    data = nodus.Scenario.from_yaml(examples / "tool_drag.yaml").to_dict()
+    for stage in data["stages"]:
+        stage["steps"] *= 20
+    data.setdefault("solver", {}).update(linear_solver="petsc")
+    data.setdefault("output", {}).update(checkpoint_every=5, vtk_every=0)
+    long_drag = work / "tool_drag_long_petsc.yaml"
+    nodus.Scenario(data).to_yaml(long_drag)
+    whole, killed = work / "tool_drag_long_2", work / "tool_drag_long_killed"
+    r = mpirun(launcher, 2, [exe, "run", str(long_drag), "--out", str(whole), "--quiet"])
+    if r.returncode != 0:
+        failures.append(f"long tool_drag on 2 ranks: exit status {r.returncode}: {r.stderr[-500:]}")
+    else:
+        shutil.rmtree(killed, ignore_errors=True)  # a steps.csv of an earlier run would be read as progress
+        env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
+        process = subprocess.Popen([launcher, "--oversubscribe", "--allow-run-as-root", "-n", "2", exe, "run",
+                                    str(long_drag), "--out", str(killed), "--quiet"], env=env,
+                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+        deadline, steps = time.monotonic() + 300, 0
+        while process.poll() is None and steps < 60 and time.monotonic() < deadline:
+            time.sleep(0.05)
+            if (killed / "steps.csv").exists():
+                steps = (killed / "steps.csv").read_text().count("\n") - 1
+        finished = process.poll() is not None
+        if not finished:
+            os.killpg(process.pid, signal.SIGKILL)
+        process.wait()
+        r = mpirun(launcher, 2, [exe, "run", str(long_drag), "--out", str(killed), "--quiet", "--resume"])
+        print(f"killed on 2 ranks after {steps} steps (of 320), resumed: exit status {r.returncode}")
+        if finished or steps < 60 or r.returncode != 0:
+            failures.append(f"kill and resume on 2 ranks: {steps} steps before the kill (finished: {finished}), "
+                            f"resume status "
+                            f"{r.returncode}: {r.stderr[-500:]}")
+        else:
+            for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
+                same = (whole / f).read_bytes() == (killed / f).read_bytes()
+                print(f"killed and resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
+                if not same:
+                    failures.append(f"killed and resumed on 2 ranks: {f} differs from the run never stopped")
 
     for f in failures:
         print("FAIL:", f)
