@@ -12,8 +12,7 @@ factor) against that policy in one process; LU by SuperLU_dist from the scenario
 from the command line over them (PETSc's -ksp_view says which factorised), against the serial run; bad input
 is reported once with exit status 2 on every rank and nothing written; a run stopped after 7 steps and resumed
 ends with the files of the run never stopped, byte for byte, and so does a longer run killed (SIGKILL) after
-60 steps and resumed. Needs the nodus Python module (PYTHONPATH) to
-rewrite the scenarios.
+60 steps and resumed. Needs the nodus Python module (PYTHONPATH) to rewrite the scenarios.
 """
 import json
 import os
