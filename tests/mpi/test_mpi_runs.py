@@ -48,11 +48,16 @@ def write_coarse_knot(scripts, target):
 RANKS = [1, 2, 3]
 
 
-def mpirun(launcher, n, args):
-    # More ranks than cores (3 on CI's 2): one OpenMP thread a rank, and ranks that yield the core while they
-    # wait for each other (OpenMPI polls otherwise: 55 s instead of 3 s for the cantilever on 3 ranks).
+def mpirun_command(launcher, n, args):
+    """The command and environment of `args` on n ranks. More ranks than cores (3 on CI's 2): one OpenMP
+    thread a rank, and ranks that yield the core while they wait for each other (OpenMPI polls otherwise: 55 s
+    instead of 3 s for the cantilever on 3 ranks)."""
     env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
-    command = [launcher, "--oversubscribe", "--allow-run-as-root", "-n", str(n)] + args
+    return [launcher, "--oversubscribe", "--allow-run-as-root", "-n", str(n)] + args, env
+
+
+def mpirun(launcher, n, args):
+    command, env = mpirun_command(launcher, n, args)
     return subprocess.run(command, capture_output=True, text=True, env=env)
 
 
@@ -199,10 +204,9 @@ def main():
         failures.append(f"long tool_drag on 2 ranks: exit status {r.returncode}: {r.stderr[-500:]}")
     else:
         shutil.rmtree(killed, ignore_errors=True)  # a steps.csv of an earlier run would be read as progress
-        env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
-        process = subprocess.Popen([launcher, "--oversubscribe", "--allow-run-as-root", "-n", "2", exe, "run",
-                                    str(long_drag), "--out", str(killed), "--quiet"], env=env,
-                                   stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL, start_new_session=True)
+        command, env = mpirun_command(launcher, 2, [exe, "run", str(long_drag), "--out", str(killed), "--quiet"])
+        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
+                                   start_new_session=True)
         deadline, steps = time.monotonic() + 300, 0
         while process.poll() is None and steps < 60 and time.monotonic() < deadline:
             time.sleep(0.05)
@@ -216,8 +220,7 @@ def main():
         print(f"killed on 2 ranks after {steps} steps (of 320), resumed: exit status {r.returncode}")
         if finished or steps < 60 or r.returncode != 0:
             failures.append(f"kill and resume on 2 ranks: {steps} steps before the kill (finished: {finished}), "
-                            f"resume status "
-                            f"{r.returncode}: {r.stderr[-500:]}")
+                            f"resume status {r.returncode}: {r.stderr[-500:]}")
         else:
             for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
                 same = (whole / f).read_bytes() == (killed / f).read_bytes()
