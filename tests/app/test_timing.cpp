@@ -73,8 +73,12 @@ TEST(Timing, AResumedRunGoesOnFromTheInterruptedRunsWallTime) {
   for (std::size_t i = 0; i < after.size(); ++i) {
     EXPECT_EQ(after[i].step, static_cast<int>(i));
     // Resumed from the end of `press` (step 3): its rows are kept as written, the later ones computed again.
-    if (i <= 3) EXPECT_EQ(after[i].wall_seconds, before[i].wall_seconds) << i;
-    if (i > 0) EXPECT_GE(after[i].wall_seconds, after[i - 1].wall_seconds) << i;
+    if (i <= 3) {
+      EXPECT_EQ(after[i].wall_seconds, before[i].wall_seconds) << i;
+    }
+    if (i > 0) {
+      EXPECT_GE(after[i].wall_seconds, after[i - 1].wall_seconds) << i;
+    }
   }
 }
 

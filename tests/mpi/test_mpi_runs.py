@@ -24,6 +24,7 @@ import time
 from pathlib import Path
 
 import nodus
+from mpi_launch import mpirun_command
 
 HERE = Path(__file__).resolve().parent
 # The verification-type examples: large rotations without contact; contact with friction and a tool; a
@@ -46,14 +47,6 @@ def write_coarse_knot(scripts, target):
     data.setdefault("output", {}).update(vtk_every=0)
     nodus.Scenario(data).to_yaml(target)
 RANKS = [1, 2, 3]
-
-
-def mpirun_command(launcher, n, args):
-    """The command and environment of `args` on n ranks. More ranks than cores (3 on CI's 2): one OpenMP
-    thread a rank, and ranks that yield the core while they wait for each other (OpenMPI polls otherwise: 55 s
-    instead of 3 s for the cantilever on 3 ranks)."""
-    env = dict(os.environ, OMP_NUM_THREADS="1", OMPI_MCA_mpi_yield_when_idle="1")
-    return [launcher, "--oversubscribe", "--allow-run-as-root", "-n", str(n)] + args, env
 
 
 def mpirun(launcher, n, args):

@@ -6,6 +6,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 
@@ -67,7 +68,7 @@ struct LastStep : simulation::StepObserver {
 };
 
 /// Runs the scenario with no output; fails the test if it does not converge.
-inline simulation::RunSummary run_quietly(simulation::Simulation& sim) {
+inline simulation::RunSummary run_quietly(VerifiedSimulation& sim) {
   return sim.run({});
 }
 

@@ -13,6 +13,7 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "step_recorder.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -47,7 +48,7 @@ stages:
       pull: {translation: [0.004, 0, 0]}
 )"),
                                                         "bundle.yaml");
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   StepRecorder steps;
   ASSERT_TRUE(sim.run({&steps}).converged);
   const simulation::StepRecord& last = steps.records.back();
@@ -115,7 +116,7 @@ stages:
 )",
                                                                false),
                                                         "bundle.yaml");
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   StepRecorder steps;
   ASSERT_TRUE(sim.run({&steps}).converged);
   const Eigen::Vector3d pivot(2, 0, 0), shift(0.5, 0, 0);
@@ -159,7 +160,7 @@ stages:
       twist: {moment: [2e-4, 0, 0]}
 )",
                                                         "twist.yaml");
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   StepRecorder steps;
   ASSERT_TRUE(sim.run({&steps}).converged);
   const double j = std::numbers::pi * std::pow(kRadius, 4) / 2;
@@ -203,7 +204,7 @@ stages:
   - {name: let_go, steps: 4, release: [pull]}
 )",
                                                         "release.yaml");
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   StepRecorder steps;
   ASSERT_TRUE(sim.run({&steps}).converged);
   const double pulled = steps.records[1].bodies[1].force.x();
@@ -246,7 +247,7 @@ stages:
       pull: {force: [0.0314, 0, 0]}
 )";
   const double force = 0.0314;  // strain about 5e-4 in each fibre
-  simulation::Simulation sim(scenario::parse_scenario(text + bound, "bind.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(text + bound, "bind.yaml"));
   StepRecorder steps;
   ASSERT_TRUE(sim.run({&steps}).converged);
   const simulation::StepRecord& last = steps.records.back();
@@ -278,7 +279,7 @@ stages:
     loads:
       pull: {force: [0.0314, 0, 0]}
 )";
-  simulation::Simulation alone(scenario::parse_scenario(text + unbound, "alone.yaml"));
+  VerifiedSimulation alone(scenario::parse_scenario(text + unbound, "alone.yaml"));
   StepRecorder alone_steps;
   ASSERT_TRUE(alone.run({&alone_steps}).converged);
   EXPECT_NEAR(alone_steps.records.back().bodies[2].force.x(), force, 1e-9 * force);

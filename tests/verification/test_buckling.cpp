@@ -53,7 +53,7 @@ TEST(Buckling, PinnedColumnFollowsTheElastica) {
   stage.motions.push_back(
       {end, {{1.0, Eigen::Vector3d(-shortening * c.length, 0, 0), Eigen::Vector3d::Zero()}}});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   LastStep capture;
   const simulation::RunSummary summary = sim.run({&capture});
   ASSERT_TRUE(summary.converged) << summary.failure;

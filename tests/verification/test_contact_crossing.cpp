@@ -9,6 +9,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -50,7 +51,7 @@ class Recorder : public simulation::StepObserver {
 };
 
 TEST(ContactCrossing, ForceMatchesTheSimplySupportedBeams) {
-  simulation::Simulation sim(scenario::parse_scenario(kScenario, "crossing.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(kScenario, "crossing.yaml"));
   Recorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   const double inertia = std::numbers::pi * std::pow(kRadius, 4) / 4.0;

@@ -19,6 +19,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -142,7 +143,7 @@ double crossing_structural_compliance() {
 class CrossingFriction : public ::testing::Test {
  protected:
   static void SetUpTestSuite() {
-    sim_ = new simulation::Simulation(scenario::parse_scenario(kCrossing, "crossing_friction.yaml"));
+    sim_ = new VerifiedSimulation(scenario::parse_scenario(kCrossing, "crossing_friction.yaml"));
     recorder_ = new Recorder;
     converged_ = sim_->run({recorder_}).converged;
   }
@@ -171,12 +172,12 @@ class CrossingFriction : public ::testing::Test {
     return (kMu * normal(p) - friction_x(p)) * compliance;
   }
 
-  static simulation::Simulation* sim_;
+  static VerifiedSimulation* sim_;
   static Recorder* recorder_;
   static bool converged_;
 };
 
-simulation::Simulation* CrossingFriction::sim_ = nullptr;
+VerifiedSimulation* CrossingFriction::sim_ = nullptr;
 Recorder* CrossingFriction::recorder_ = nullptr;
 bool CrossingFriction::converged_ = false;
 
@@ -261,7 +262,7 @@ std::vector<double> crossing_slide_ratios(const std::string& contact, bool slipp
   std::string text = kCrossing;
   const std::string original = "contact: {self_contact: false, friction: 0.3}\n";
   text.replace(text.find(original), original.size(), contact);
-  simulation::Simulation sim(scenario::parse_scenario(text, "crossing_pairs.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(text, "crossing_pairs.yaml"));
   Recorder recorder;
   EXPECT_TRUE(sim.run({&recorder}).converged);
   std::vector<double> ratios;
@@ -399,7 +400,7 @@ conditions:
 }
 
 TEST(ContactFriction, ParallelBeamSlidesAtMuTimesTheNormalForce) {
-  simulation::Simulation sim(scenario::parse_scenario(parallel_scenario(), "parallel_friction.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(parallel_scenario(), "parallel_friction.yaml"));
   Recorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   const std::vector<simulation::StepRecord>& records = recorder.records;
@@ -538,7 +539,7 @@ double axis_distance(const model::Model& model, const Eigen::VectorXd& x) {
 }
 
 TEST(ContactFriction, CrossingDrivenHardNeverPassesThrough) {
-  simulation::Simulation sim(scenario::parse_scenario(kHardCrossing, "hard_crossing.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(kHardCrossing, "hard_crossing.yaml"));
   Recorder recorder;
   const simulation::RunSummary summary = sim.run({&recorder});
   const double p_max = sim.contact_laws().max_penetration;

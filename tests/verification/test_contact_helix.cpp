@@ -23,6 +23,7 @@
 
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -467,7 +468,7 @@ void print_steps(const std::vector<simulation::StepRecord>& records, const simul
 class ContactHelix : public testing::TestWithParam<Strategy> {};
 
 TEST_P(ContactHelix, RadiusAndLineForceMatchTheHelicalRod) {
-  simulation::Simulation sim(scenario::parse_scenario(scenario_text(GetParam()), "double_helix.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(scenario_text(GetParam()), "double_helix.yaml"));
   Recorder recorder;
   const simulation::RunSummary summary = sim.run({&recorder});
   ASSERT_TRUE(summary.converged) << summary.failure;
@@ -558,7 +559,7 @@ class ContactHelixAngle : public testing::TestWithParam<HelixAngle> {};
 
 TEST_P(ContactHelixAngle, LineLoadMatchesTheHelicalRodAtFiniteAngleAndStretch) {
   const HelixAngle& c = GetParam();
-  simulation::Simulation sim(scenario::parse_scenario(angle_scenario_text(c), "double_helix_angle.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(angle_scenario_text(c), "double_helix_angle.yaml"));
   Recorder recorder;
   const simulation::RunSummary summary = sim.run({&recorder});
   ASSERT_TRUE(summary.converged) << summary.failure;

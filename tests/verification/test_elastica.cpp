@@ -32,7 +32,7 @@ TEST_P(Elastica, TipDisplacement) {
   stage.loads.push_back(
       {tip, Eigen::Vector3d(0, -e.load * c.ei() / (c.length * c.length), 0), Eigen::Vector3d::Zero()});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   const simulation::RunSummary summary = run_quietly(sim);
   ASSERT_TRUE(summary.converged) << summary.failure;
   const Eigen::Vector3d d = centre(sim, 2 * c.elements) - centre(sim, 0);

@@ -26,7 +26,7 @@ Eigen::Vector3d tip_under_moment(const BeamCase& c, double moment, int steps,
   stage.steps = steps;
   stage.loads.push_back({tip, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, moment)});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   const simulation::RunSummary summary = run_quietly(sim);
   EXPECT_TRUE(summary.converged) << summary.failure;
   if (iterations) *iterations = summary.newton_iterations;

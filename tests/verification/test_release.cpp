@@ -27,7 +27,7 @@ TEST(Release, BentCantileverSpringsBackStraight) {
   release.steps = 5;
   release.release.push_back(tip);
   s.stages.push_back(release);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   struct Capture : simulation::StepObserver {
     simulation::StepRecord bent, last;
     void on_step(const simulation::Simulation& sim, const simulation::StepRecord& r) override {

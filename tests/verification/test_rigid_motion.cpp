@@ -28,7 +28,7 @@ TEST(RigidMotion, GivesNoInternalForce) {
   stage.motions.push_back({a, {{1.0, shift, rotation_degrees}}});
   stage.motions.push_back({b, {{1.0, q * end + shift - end, rotation_degrees}}});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   LastStep capture;
   const simulation::RunSummary summary = sim.run({&capture});
   ASSERT_TRUE(summary.converged) << summary.failure;

@@ -15,6 +15,7 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "step_recorder.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -44,7 +45,7 @@ stages:
 
 TEST(Stabilization, DraggedCantileverCarriesTheDragAndRelaxesWhenItVanishes) {
   const scenario::Scenario scenario = scenario::parse_scenario(kScenario, "drag.yaml");
-  simulation::Simulation sim(scenario);
+  VerifiedSimulation sim(scenario);
   StepRecorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   const beam::Beam& rod = sim.model().beam(0);
@@ -125,7 +126,7 @@ stages:
 )";
 
 TEST(Stabilization, SpunRodCarriesTheDragOfItsSectionsOnTheDirectors) {
-  simulation::Simulation sim(scenario::parse_scenario(kSpin, "spin.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(kSpin, "spin.yaml"));
   StepRecorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   // Over a step dt each director turns by omega dt along a chord: the moment of its drag is

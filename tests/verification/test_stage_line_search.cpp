@@ -42,7 +42,7 @@ Bent bend(bool solver, scenario::StageSwitch first, scenario::StageSwitch second
     stage.loads.push_back({tip, Eigen::Vector3d::Zero(), Eigen::Vector3d(0, 0, fraction * moment)});
     s.stages.push_back(stage);
   }
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   StepRecorder recorder;
   const simulation::RunSummary summary = sim.run({&recorder});
   EXPECT_TRUE(summary.converged) << summary.failure;

@@ -34,7 +34,7 @@ TEST(Tension, AxialForceAndPoissonContraction) {
   stage.motions.push_back(
       {end, {{1.0, Eigen::Vector3d((stretch - 1) * c.length, 0, 0), Eigen::Vector3d::Zero()}}});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   LastStep capture;
   ASSERT_TRUE(sim.run({&capture}).converged);
   const double e33 = 0.5 * (stretch * stretch - 1);
@@ -66,7 +66,7 @@ TEST(Torsion, TorqueTwistSlope) {
   stage.steps = 1;
   stage.motions.push_back({end, {{1.0, Eigen::Vector3d::Zero(), Eigen::Vector3d(twist_degrees, 0, 0)}}});
   s.stages.push_back(stage);
-  simulation::Simulation sim(s);
+  VerifiedSimulation sim(s);
   LastStep capture;
   ASSERT_TRUE(sim.run({&capture}).converged);
   const double theta = twist_degrees * std::numbers::pi / 180;

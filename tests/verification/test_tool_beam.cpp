@@ -12,6 +12,7 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "step_recorder.hpp"
+#include "verified_simulation.hpp"
 
 namespace nodus::verification {
 namespace {
@@ -50,7 +51,7 @@ contact: {self_contact: false}
 )";
 
 TEST(ToolBeam, PressesTurnsAndIsRemoved) {
-  simulation::Simulation sim(scenario::parse_scenario(kScenario, "tool.yaml"));
+  VerifiedSimulation sim(scenario::parse_scenario(kScenario, "tool.yaml"));
   StepRecorder recorder;
   ASSERT_TRUE(sim.run({&recorder}).converged);
   ASSERT_EQ(recorder.records.size(), 9u);
