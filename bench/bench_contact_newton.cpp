@@ -13,6 +13,9 @@
 //                             solve_ms), the ratio of the iteration to its factorisation (iteration_ratio),
 //                             and the Cholesky factor's non-zeros and flops by CHOLMOD's analysis (METIS
 //                             ordering)
+//   BM_BundleFactorAnalysis   the Cholesky factor's non-zeros and flops at 27 to 1,000 fibres from the
+//   analysis
+//                             of the graph of the beam nodes (no tangent assembled)
 //   BM_ContactInstall         EquilibriumProblem::set_contact after a detection: /0 the same beam elements in
 //                             contact (the pattern is kept: its blocks' adjacency compared), /1 one zone's
 //                             elements more or fewer than the last time (a new pattern is built); the
@@ -20,6 +23,7 @@
 // The state is not updated, so every iteration does the same work. Argument: number of fibres (100 elements
 // each). Results and commands: docs/performance.md.
 
+#include <algorithm>
 #include <chrono>
 #include <memory>
 #include <vector>
@@ -28,10 +32,13 @@
 #include <Eigen/CholmodSupport>
 
 #include "bundle_problem.hpp"
+#include "nodus/contact/contact_term.hpp"
 #include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
+#include "nodus/model/internal_forces_term.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
 #include "nodus/solver/linear_solver.hpp"
+#include "nodus/solver/sparse_assembler.hpp"
 
 namespace {
 
@@ -158,6 +165,110 @@ void BM_ContactNewtonIteration(benchmark::State& state) {
   set_counters(state, s);
 }
 
+/// The Cholesky factor of the bundle's tangent from the analysis of its nodes, for bundles too large to
+/// assemble (1,000 fibres: about 530 M tangent entries): CHOLMOD's symbolic analysis (METIS ordering) of the
+/// graph of the free beam nodes (an edge where an element or a contact element couples two nodes), then every
+/// node's nine unknowns counted in. In block column J of the factor with C_J blocks (its diagonal one
+/// included) the k-th of the node's nine columns (k = 0..8) holds 9 - k + 9 (C_J - 1) entries: nnz_L is their
+/// sum, factor_flops the sum of their squares, as CHOLMOD counts a factorisation's flops (the sum over L's
+/// columns of their counts squared). At 27 and 75 fibres the counters scalar_nnz_L and scalar_flops give
+/// CHOLMOD's analysis of the assembled tangent itself (BM_ContactNewtonIteration's), for comparison: the
+/// orderings differ (METIS on nodes or on unknowns). Also largest_front (the order of the largest dense front
+/// of a multifrontal factorisation, in unknowns) and update_GB (the sum of the fronts' contribution blocks,
+/// lower triangles in doubles: what the ranks of a distributed factorisation exchange at most). analyze_ms:
+/// the analysis of the nodes' graph.
+void BM_BundleFactorAnalysis(benchmark::State& state) {
+  const int fibres = static_cast<int>(state.range(0));
+  const nodus::bench::Bundle bundle = nodus::bench::twisted_bundle(fibres, 100, 10.0, 0.1, 1.99);
+  const nodus::model::Model& model = bundle.model;
+  nodus::contact::ContactTerm contact(model);
+  nodus::contact::ContactGeometry geometry = nodus::contact::detect(model, bundle.x, {});
+  const std::size_t zones = geometry.zones.size(), elements = geometry.elements.size();
+  contact.set_elements(std::move(geometry), std::vector<double>(zones, 400.0),
+                       std::vector<Eigen::Vector3d>(elements, Eigen::Vector3d::Zero()));
+  std::vector<std::vector<int>> groups;
+  nodus::model::InternalForcesTerm(model).couplings(groups);
+  contact.couplings(groups);
+  const nodus::solver::BlockAdjacency adjacency = nodus::solver::block_adjacency(model.num_nodes(), groups);
+  // Both ends of every fibre held (bundle_problem.hpp): their nodes have no free unknowns.
+  std::vector<int> free_node(static_cast<std::size_t>(model.num_nodes()), 0);
+  for (const nodus::beam::Beam& beam : model.beams()) {
+    free_node[static_cast<std::size_t>(beam.node(0))] = -1;
+    free_node[static_cast<std::size_t>(beam.node(beam.num_nodes() - 1))] = -1;
+  }
+  int n = 0;
+  for (int& index : free_node) index = index < 0 ? -1 : n++;
+  std::vector<Eigen::Triplet<double, int>> upper;
+  for (int a = 0; a < model.num_nodes(); ++a)
+    for (int b : adjacency.neighbours[static_cast<std::size_t>(a)]) {
+      const int i = free_node[static_cast<std::size_t>(a)], j = free_node[static_cast<std::size_t>(b)];
+      if (i >= 0 && j >= 0 && i <= j) upper.emplace_back(i, j, 1.0);
+    }
+  nodus::solver::SparseMatrix nodes(n, n);
+  nodes.setFromTriplets(upper.begin(), upper.end());
+  double nnz_l = 0.0, flops = 0.0, analyze_ms = 0.0, largest_front = 0.0, update_bytes = 0.0;
+  for (auto _ : state) {
+    cholmod_common c;
+    cholmod_start(&c);
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_METIS;
+    c.postorder = 1;
+    c.supernodal = CHOLMOD_SUPERNODAL;
+    cholmod_sparse a = Eigen::viewAsCholmod(nodes);
+    a.stype = 1;  // the upper triangle
+    const auto start = std::chrono::steady_clock::now();
+    cholmod_factor* factor = cholmod_analyze(&a, &c);
+    analyze_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    if (factor == nullptr) {
+      state.SkipWithError("CHOLMOD's analysis failed");
+      cholmod_finish(&c);
+      return;
+    }
+    const int* counts = static_cast<const int*>(factor->ColCount);
+    nnz_l = flops = 0.0;
+    for (int j = 0; j < n; ++j)
+      for (int k = 0; k < kNodeDofs; ++k) {
+        const double column = kNodeDofs - k + kNodeDofs * (counts[j] - 1.0);
+        nnz_l += column;
+        flops += column * column;
+      }
+    // The supernodes (CHOLMOD's, relaxed): a multifrontal factorisation (MUMPS) eliminates each one's columns
+    // in a dense front of its rows and passes the rest of the front, its contribution block, to its parent.
+    // The contribution blocks' sum bounds what the ranks exchange in one factorisation (every block sent to
+    // another rank); the largest front is the densest step.
+    const auto* super = static_cast<const int*>(factor->super);
+    const auto* rows = static_cast<const int*>(factor->pi);
+    largest_front = update_bytes = 0.0;
+    for (std::size_t s = 0; s < factor->nsuper; ++s) {
+      const double front = kNodeDofs * static_cast<double>(rows[s + 1] - rows[s]);
+      const double pivots = kNodeDofs * static_cast<double>(super[s + 1] - super[s]);
+      largest_front = std::max(largest_front, front);
+      update_bytes += 8.0 * (front - pivots) * (front - pivots + 1.0) / 2.0;
+    }
+    cholmod_free_factor(&factor, &c);
+    cholmod_finish(&c);
+  }
+  state.counters["largest_front"] = largest_front;
+  state.counters["update_GB"] = update_bytes / 1e9;
+  state.counters["analyze_ms"] = analyze_ms;
+  state.counters["free_nodes"] = n;
+  state.counters["node_pairs"] = static_cast<double>(nodes.nonZeros());
+  state.counters["contact_elements"] = static_cast<double>(elements);
+  state.counters["nnz_L"] = nnz_l;
+  state.counters["factor_flops"] = flops;
+  if (fibres <= 75) {
+    Setup s(fibres);
+    Eigen::CholmodSupernodalLLT<nodus::solver::SparseMatrix, Eigen::Upper> llt;
+    cholmod_common& c = llt.cholmod();
+    c.nmethods = 1;
+    c.method[0].ordering = CHOLMOD_METIS;
+    c.postorder = 1;
+    llt.analyzePattern(s.problem->tangent());
+    state.counters["scalar_nnz_L"] = c.lnz;
+    state.counters["scalar_flops"] = c.fl;
+  }
+}
+
 void BM_ContactInstall(benchmark::State& state) {
   Setup s(static_cast<int>(state.range(0)));
   const bool change = state.range(1) != 0;
@@ -214,6 +325,13 @@ BENCHMARK(BM_BundleDetection)->Arg(75)->Arg(300)->Arg(1000)->Unit(benchmark::kMi
 BENCHMARK(BM_ContactAssembly)->Apply(sizes);
 BENCHMARK(BM_ContactFactorizeSolve)->Apply(sizes_and_solvers);
 BENCHMARK(BM_ContactNewtonIteration)->Apply(sizes)->UseRealTime();
+BENCHMARK(BM_BundleFactorAnalysis)
+    ->Arg(27)
+    ->Arg(75)
+    ->Arg(300)
+    ->Arg(1000)
+    ->Iterations(1)
+    ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_ContactInstall)
     ->ArgsProduct({{7, 27, 75}, {0, 1}})
     ->ArgNames({"fibres", "new_pattern"})
