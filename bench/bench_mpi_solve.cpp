@@ -105,6 +105,26 @@ int main(int argc, char** argv) {
     const auto me = static_cast<std::size_t>(nodus::parallel::rank());
     std::vector<double> entries(ranks, 0.0), peak(ranks, 0.0);
     entries[me] = static_cast<double>(s.problem->tangent().nonZeros());
+    // The beam elements and contact elements each rank evaluates (those with a node among its blocks; an
+    // element across two ranks' blocks counts for both).
+    std::vector<double> beam_elements(ranks, 0.0), contact_elements(ranks, 0.0);
+    const nodus::solver::BlockRange mine = s.problem->local_blocks();
+    const auto touches = [&](const std::vector<int>& nodes) {
+      return std::any_of(nodes.begin(), nodes.end(), [&](int n) { return mine.contains(n); });
+    };
+    for (const std::vector<int>& nodes : s.bundle.model.element_nodes())
+      beam_elements[me] += touches(nodes) ? 1.0 : 0.0;
+    for (const nodus::contact::ContactElement& e : s.geometry.elements) {
+      const int i = s.bundle.model.element_first_node(e.particle_i.element);
+      const int j = s.bundle.model.element_first_node(e.particle_j.element);
+      contact_elements[me] += touches({i, i + 1, i + 2, j, j + 1, j + 2}) ? 1.0 : 0.0;
+    }
+    nodus::parallel::sum_over_ranks(beam_elements.data(), ranks);
+    nodus::parallel::sum_over_ranks(contact_elements.data(), ranks);
+    if (root && ranks > 1 && s.problem->distributed())
+      for (std::size_t k = 0; k < ranks; ++k)
+        std::printf("rank %zu evaluates %.0f beam elements and %.0f contact elements\n", k, beam_elements[k],
+                    contact_elements[k]);
     rusage usage{};
     getrusage(RUSAGE_SELF, &usage);
     peak[me] = static_cast<double>(usage.ru_maxrss);

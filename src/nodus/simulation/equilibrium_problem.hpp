@@ -148,6 +148,10 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   bool distributed() const { return distributed_; }
   /// The free rows [first, last) of this rank's blocks when distributed, else {-1, -1}.
   std::pair<int, int> local_rows() const;
+  /// This rank's blocks when distributed (the elements with a node among them are its to evaluate), else all.
+  solver::BlockRange local_blocks() const {
+    return distributed_ ? rank_blocks_[static_cast<std::size_t>(parallel::rank())] : solver::BlockRange{};
+  }
 
  private:
   const model::Model& model_;
@@ -190,10 +194,7 @@ class EquilibriumProblem final : public solver::SteppedProblem {
   /// and the states of the contact elements they own.
   void share_among_ranks();
 
-  model::TermState term_state() const {
-    return {x_, x_committed_, time_, time_committed_,
-            distributed_ ? rank_blocks_[static_cast<std::size_t>(parallel::rank())] : solver::BlockRange{}};
-  }
+  model::TermState term_state() const { return {x_, x_committed_, time_, time_committed_, local_blocks()}; }
 };
 
 }  // namespace nodus::simulation
