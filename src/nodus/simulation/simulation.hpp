@@ -40,9 +40,9 @@ struct StepRecord {
   int newton_iterations = 0;
   int cutbacks = 0;       ///< halvings of the step before it converged
   double residual = 0.0;  ///< |R| over the free unknowns at convergence [N]
-  double residual_tolerance =
-      0.0;                 ///< the tolerance |R| met then (EquilibriumProblem::residual_tolerance) [N]
-  double increment = 0.0;  ///< scaled size of the last Newton increment [-]
+  /// The tolerance |R| met then (EquilibriumProblem::residual_tolerance) [N].
+  double residual_tolerance = 0.0;
+  double increment = 0.0;                       ///< scaled size of the last Newton increment [-]
   std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)
   std::vector<BodyRecord> bodies;               ///< per rigid body (Scenario::bodies order)
   int zones = 0;                                ///< proximity zones detected in the converged state
