@@ -14,8 +14,7 @@
 //                             and the Cholesky factor's non-zeros and flops by CHOLMOD's analysis (METIS
 //                             ordering)
 //   BM_BundleFactorAnalysis   the Cholesky factor's non-zeros and flops at 27 to 1,000 fibres from the
-//   analysis
-//                             of the graph of the beam nodes (no tangent assembled)
+//                             analysis of the graph of the beam nodes (no tangent assembled)
 //   BM_ContactInstall         EquilibriumProblem::set_contact after a detection: /0 the same beam elements in
 //                             contact (the pattern is kept: its blocks' adjacency compared), /1 one zone's
 //                             elements more or fewer than the last time (a new pattern is built); the
@@ -186,8 +185,9 @@ void BM_ContactNewtonIteration(benchmark::State& state) {
 /// CHOLMOD's analysis of the assembled tangent itself (BM_ContactNewtonIteration's), for comparison: the
 /// orderings differ (METIS on nodes or on unknowns). Also largest_front (the order of the largest dense front
 /// of a multifrontal factorisation, in unknowns) and update_GB (the sum of the fronts' contribution blocks,
-/// lower triangles in doubles: what the ranks of a distributed factorisation exchange at most). analyze_ms:
-/// the analysis of the nodes' graph.
+/// lower triangles in doubles: of the order of what the ranks of a distributed factorisation send each other;
+/// CHOLMOD's supernodes, relaxed over nodes' columns, make both somewhat larger). analyze_ms: the analysis of
+/// the nodes' graph.
 void BM_BundleFactorAnalysis(benchmark::State& state) {
   const int fibres = static_cast<int>(state.range(0));
   const nodus::bench::Bundle bundle = nodus::bench::twisted_bundle(fibres, 100, 10.0, 0.1, 1.99);
@@ -245,8 +245,9 @@ void BM_BundleFactorAnalysis(benchmark::State& state) {
       }
     // The supernodes (CHOLMOD's, relaxed): a multifrontal factorisation (MUMPS) eliminates each one's columns
     // in a dense front of its rows and passes the rest of the front, its contribution block, to its parent.
-    // The contribution blocks' sum bounds what the ranks exchange in one factorisation (every block sent to
-    // another rank); the largest front is the densest step.
+    // The contribution blocks' sum is of the order of what the ranks send in one factorisation: more where a
+    // front is shared by ranks (its pivot rows go to each) and at the root, less where a parent is on its
+    // child's rank. The largest front is the densest step.
     const auto* super = static_cast<const int*>(factor->super);
     const auto* rows = static_cast<const int*>(factor->pi);
     largest_front = update_bytes = 0.0;

@@ -2,13 +2,13 @@
 // The simulation of every verification case. Unset, the two variables below change nothing: the case runs as
 // written. tests/mpi/test_mpi_verification.py sets them to run the cases on PETSc over 1, 2 and 3 ranks and
 // compare each with the serial run (docs/parallel.md, "Same answers: the checks"):
-//  - NODUS_VERIFICATION_SOLVER=NAME (a solver.linear_solver name: petsc, cholmod, ...) replaces the
-//  scenario's
-//    linear solver, and every stage's own;
+//  - NODUS_VERIFICATION_SOLVER=NAME (a solver.linear_solver name: petsc, cholmod, ...) replaces the linear
+//    solver of the scenario and of each of its stages;
 //  - NODUS_VERIFICATION_RECORD=DIR: when the simulation ends, rank 0 writes its converged steps (stage, load
 //    time, Newton iterations, cutbacks, detections, loop 3's iterations, zones, contact elements, slipping
-//    elements) to DIR/CASE.K.steps.csv and its final unknowns to DIR/CASE.K.state.csv, CASE being the test's
-//    name ('/' as '_') and K counting the simulations of one test from 0.
+//    elements, Newton's last |R| and increment with their tolerances, the linear solver) to
+//    DIR/CASE.K.steps.csv and its final unknowns to DIR/CASE.K.state.csv, CASE being the test's name ('/' as
+//    '_') and K counting the simulations of one test from 0.
 
 #include <cstdio>
 #include <cstdlib>
@@ -97,12 +97,12 @@ class VerifiedSimulation : public simulation::Simulation {
     std::fprintf(
         f,
         "step,stage,time,newton_iterations,cutbacks,detections,normal_iterations,zones,contact_elements,"
-        "slipping,residual,residual_tolerance,increment,increment_tolerance\n");
+        "slipping,residual,residual_tolerance,increment,increment_tolerance,linear_solver\n");
     for (const simulation::StepRecord& r : steps_.records)
-      std::fprintf(f, "%d,%d,%.17g,%d,%d,%d,%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g\n", r.step, r.stage, r.time,
-                   r.newton_iterations, r.cutbacks, r.detections, r.normal_iterations, r.zones,
+      std::fprintf(f, "%d,%d,%.17g,%d,%d,%d,%d,%d,%d,%d,%.17g,%.17g,%.17g,%.17g,%s\n", r.step, r.stage,
+                   r.time, r.newton_iterations, r.cutbacks, r.detections, r.normal_iterations, r.zones,
                    r.contact_elements, r.slipping, r.residual, r.residual_tolerance, r.increment,
-                   scenario().solver.increment_tolerance);
+                   scenario().solver.increment_tolerance, linear_solver_name().c_str());
     std::fclose(f);
     f = std::fopen((name_ + ".state.csv").c_str(), "w");
     if (f == nullptr) throw std::runtime_error("cannot write " + name_ + ".state.csv");

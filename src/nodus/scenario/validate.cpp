@@ -391,9 +391,9 @@ void check_stages(const Checker& check, const Scenario& s, const std::vector<Sta
     // The written value of one of the stage's keys, for a message.
     const auto value_of = [&stage](std::string_view path) {
       const auto keys = StageSpec::keys();
-      return value_text(
-          *std::find_if(keys.begin(), keys.end(), [path](const Key<StageSpec>& k) { return k.path == path; }),
-          stage);
+      return value_text(*std::find_if(keys.begin(), keys.end(),
+                                      [path](const Key<StageSpec>& key) { return key.path == path; }),
+                        stage);
     };
     if (const std::string_view expected = stage_solver_expected(stage, s); !expected.empty())
       check.fail(at + ".linear_solver", expected, value_of("stages[].linear_solver"));

@@ -47,6 +47,7 @@ bool add_solve(solver::NewtonReport& total, const solver::NewtonReport& r) {
   total.iterations += r.iterations;
   total.longest_solve = std::max(total.longest_solve, r.iterations);
   total.residual = r.residual;
+  total.residual_tolerance = r.residual_tolerance;
   total.increment = r.increment;
   if (r.converged) return true;
   total.failure = r.failure;

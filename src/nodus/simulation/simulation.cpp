@@ -504,7 +504,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
           record.newton_iterations = r.newton.iterations;
           record.cutbacks = r.cutbacks;
           record.residual = r.newton.residual;
-          record.residual_tolerance = problem_->residual_tolerance();
+          record.residual_tolerance = r.newton.residual_tolerance;
           record.increment = r.newton.increment;
           record.ends_stage = r.time == t1;
           summary.newton_iterations += r.newton.iterations;

@@ -40,7 +40,7 @@ struct StepRecord {
   int newton_iterations = 0;
   int cutbacks = 0;       ///< halvings of the step before it converged
   double residual = 0.0;  ///< |R| over the free unknowns at convergence [N]
-  /// The tolerance |R| met then (EquilibriumProblem::residual_tolerance) [N].
+  /// The tolerance |R| was compared with at the end of the step's last Newton solve [N].
   double residual_tolerance = 0.0;
   double increment = 0.0;                       ///< scaled size of the last Newton increment [-]
   std::vector<loading::SectionForce> sections;  ///< per condition (Scenario::conditions order)

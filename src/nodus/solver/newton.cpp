@@ -167,6 +167,7 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
     norm = residual.norm();
     report.iterations = it;
     report.residual = norm;
+    report.residual_tolerance = problem.residual_tolerance();
     report.increment = increment;
     spdlog::debug("newton {:2d}: |R| = {:.3e} (tol {:.1e}), |du| = {:.3e}, alpha = {}", it, norm,
                   problem.residual_tolerance(), increment, alpha);

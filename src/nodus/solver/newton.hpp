@@ -47,10 +47,11 @@ struct NewtonReport {
   /// The iterations of the longest single Newton solve among `iterations`: a step solved by several Newton
   /// solves (the contact loops) sums them in `iterations`. 0: the same as `iterations`.
   int longest_solve = 0;
-  double residual = 0.0;   ///< |R| at the end [residual units]
-  double increment = 0.0;  ///< scaled size of the last increment
-  std::string failure;     ///< why it did not converge
-  bool cancelled = false;  ///< stopped by NewtonSettings::cancel, not by a failure
+  double residual = 0.0;            ///< |R| at the end [residual units]
+  double residual_tolerance = 0.0;  ///< the tolerance |R| was compared with at the end [residual units]
+  double increment = 0.0;           ///< scaled size of the last increment
+  std::string failure;              ///< why it did not converge
+  bool cancelled = false;           ///< stopped by NewtonSettings::cancel, not by a failure
 };
 
 /// Where Newton's time went, summed over all solves [s].
