@@ -96,8 +96,8 @@ int main(int argc, char** argv) {
           "%.3f s, factorise+solve median %.3f s (min %.3f, max %.3f, %d repeats), |K du - r|/|r| %.1e%s\n",
           fibres, static_cast<long>(s.problem->size()), s.geometry.elements.size(), nodus::parallel::size(),
           serial        ? "serial mumps LDL^T"
-          : distributed ? "petsc (MUMPS LDL^T), distributed evaluation"
-                        : "petsc (MUMPS LDL^T)",
+          : distributed ? "petsc (MUMPS LDL^T unless PETSc options say otherwise), distributed evaluation"
+                        : "petsc (MUMPS LDL^T unless PETSc options say otherwise)",
           assembly, first, times[times.size() / 2], times.front(), times.back(), repeats, residual,
           ok ? "" : " (a factorisation failed)");
     // Each rank's share of the tangent and its peak memory (kB on Linux), the largest over the ranks.

@@ -156,6 +156,27 @@ def main():
         if c.returncode != 0:
             failures.append(f"tool_drag, {package} on 2 ranks, differs from the serial run: {c.stdout}")
 
+    # A preconditioner type from the command line keeps MUMPS: LU for the twisted pair's symmetric tangent. On
+    # one rank PETSc would otherwise take its own LU (it did, until the solver named MUMPS among its options).
+    for n in (1, 2):
+        out = work / f"twisted_pair_lu_{n}"
+        r = mpirun(launcher, n, [exe, "run", str(work / "twisted_pair_detection_petsc.yaml"), "--out", str(out),
+                                 "--quiet", "-ksp_view", "-pc_type", "lu"])
+        log = r.stdout + r.stderr
+        lu_by_mumps = ("type: lu" in log and "package used to perform factorization: mumps" in log
+                       and "package used to perform factorization: petsc" not in log)
+        print(f"twisted_pair_detection with -pc_type lu on {n} rank(s): exit status {r.returncode}, "
+              f"{'LU by MUMPS' if lu_by_mumps else 'NOT LU by MUMPS'}")
+        if r.returncode != 0 or not lu_by_mumps:
+            failures.append(f"twisted_pair_detection with -pc_type lu on {n} rank(s): exit status "
+                            f"{r.returncode}: {log[-600:]}")
+            continue
+        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"),
+                            str(work / "twisted_pair_detection_serial"), str(out)], capture_output=True, text=True)
+        print(f"twisted_pair_detection, LU on {n} rank(s): " + c.stdout.strip().replace("\n", "; "))
+        if c.returncode != 0:
+            failures.append(f"twisted_pair_detection, LU on {n} rank(s), differs from the serial run: {c.stdout}")
+
     # Bad input: one message, status 2 on every rank (mpirun returns a rank's non-zero status), no folder.
     bad = work / "bad.yaml"
     bad.write_text((work / "tool_drag_petsc.yaml").read_text().replace("friction: 0.3", "friction: -1"))
