@@ -31,7 +31,6 @@
 #include <Eigen/CholmodSupport>
 
 #include "bundle_problem.hpp"
-#include "nodus/contact/contact_term.hpp"
 #include "nodus/contact/detection.hpp"
 #include "nodus/loading/boundary_conditions.hpp"
 #include "nodus/model/internal_forces_term.hpp"
@@ -190,23 +189,16 @@ void BM_ContactNewtonIteration(benchmark::State& state) {
 /// the nodes' graph.
 void BM_BundleFactorAnalysis(benchmark::State& state) {
   const int fibres = static_cast<int>(state.range(0));
-  const nodus::bench::Bundle bundle = nodus::bench::twisted_bundle(fibres, 100, 10.0, 0.1, 1.99);
+  const nodus::bench::Bundle bundle = nodus::bench::contact_bundle(fibres);
   const nodus::model::Model& model = bundle.model;
-  nodus::contact::ContactTerm contact(model);
-  nodus::contact::ContactGeometry geometry = nodus::contact::detect(model, bundle.x, {});
-  const std::size_t zones = geometry.zones.size(), elements = geometry.elements.size();
-  contact.set_elements(std::move(geometry), std::vector<double>(zones, 400.0),
-                       std::vector<Eigen::Vector3d>(elements, Eigen::Vector3d::Zero()));
-  std::vector<std::vector<int>> groups;
+  const nodus::contact::ContactGeometry geometry = nodus::contact::detect(model, bundle.x, {});
+  const std::size_t elements = geometry.elements.size();
+  std::vector<std::vector<int>> groups = nodus::bench::contact_couplings(model, geometry);
   nodus::model::InternalForcesTerm(model).couplings(groups);
-  contact.couplings(groups);
   const nodus::solver::BlockAdjacency adjacency = nodus::solver::block_adjacency(model.num_nodes(), groups);
-  // Both ends of every fibre held (bundle_problem.hpp): their nodes have no free unknowns.
+  // The held nodes have no free unknowns.
   std::vector<int> free_node(static_cast<std::size_t>(model.num_nodes()), 0);
-  for (const nodus::beam::Beam& beam : model.beams()) {
-    free_node[static_cast<std::size_t>(beam.node(0))] = -1;
-    free_node[static_cast<std::size_t>(beam.node(beam.num_nodes() - 1))] = -1;
-  }
+  for (int node : nodus::bench::held_nodes(model)) free_node[static_cast<std::size_t>(node)] = -1;
   int n = 0;
   for (int& index : free_node) index = index < 0 ? -1 : n++;
   std::vector<Eigen::Triplet<double, int>> upper;

@@ -114,11 +114,8 @@ int main(int argc, char** argv) {
     };
     for (const std::vector<int>& nodes : s.bundle.model.element_nodes())
       beam_elements[me] += touches(nodes) ? 1.0 : 0.0;
-    for (const nodus::contact::ContactElement& e : s.geometry.elements) {
-      const int i = s.bundle.model.element_first_node(e.particle_i.element);
-      const int j = s.bundle.model.element_first_node(e.particle_j.element);
-      contact_elements[me] += touches({i, i + 1, i + 2, j, j + 1, j + 2}) ? 1.0 : 0.0;
-    }
+    for (const std::vector<int>& nodes : nodus::bench::contact_couplings(s.bundle.model, s.geometry))
+      contact_elements[me] += touches(nodes) ? 1.0 : 0.0;
     nodus::parallel::sum_over_ranks(beam_elements.data(), ranks);
     nodus::parallel::sum_over_ranks(contact_elements.data(), ranks);
     if (root && ranks > 1 && s.problem->distributed())
