@@ -54,6 +54,17 @@ def mpirun(launcher, n, args):
     return subprocess.run(command, capture_output=True, text=True, env=env)
 
 
+def compare(reference, run, label, failures):
+    """compare_runs.py of `run` against `reference`: prints its summary after `label`; a difference is a
+    failure. Returns compare_runs.py's output."""
+    c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(reference), str(run)],
+                       capture_output=True, text=True)
+    print(f"{label}: " + c.stdout.strip().replace("\n", "; "))
+    if c.returncode != 0:
+        failures.append(f"{label} differs from the serial run: {c.stdout}")
+    return c.stdout
+
+
 def with_solver(source, target, **solver):
     scenario = nodus.Scenario.from_yaml(source)
     data = scenario.to_dict()
@@ -87,11 +98,7 @@ def main():
             if r.returncode != 0:
                 failures.append(f"{name} on {n} ranks: exit status {r.returncode}: {r.stderr[-800:]}")
                 continue
-            c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(serial), str(out)],
-                               capture_output=True, text=True)
-            print(f"{name}, {n} ranks: " + c.stdout.strip().replace("\n", "; "))
-            if c.returncode != 0:
-                failures.append(f"{name} on {n} ranks differs from the serial run: {c.stdout}")
+            compare(serial, out, f"{name}, {n} ranks", failures)
 
     # Several ranks share the evaluation (each its own blocks' rows), unless the factor is kept (below).
     r = mpirun(launcher, 2, [exe, "run", str(work / "twisted_pair_detection_petsc.yaml"), "--out",
@@ -118,16 +125,12 @@ def main():
         failures.append(f"lagged factorisation: exit status {r.returncode} serial, {r2.returncode} on 2 ranks: "
                         f"{r.stderr[-400:]} {r2.stderr[-400:]}")
     else:
-        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(serial), str(out)],
-                           capture_output=True, text=True)
+        compare(serial, out, "tool_drag with reuse_factor, 2 ranks", failures)
         counts = [json.loads((d / "summary.json").read_text()) for d in (serial, out)]
         counts = [(s["newton_iterations"], s["factorizations"], s["krylov_iterations"]) for s in counts]
         shared = "evaluation distributed over 2 ranks" in r2.stderr
-        print("tool_drag with reuse_factor, 2 ranks: " + c.stdout.strip().replace("\n", "; ") +
-              "; (Newton iterations, factorisations, GMRES iterations): serial {}, 2 ranks {}".format(*counts) +
-              f"; evaluation {'distributed' if shared else 'NOT distributed'}")
-        if c.returncode != 0:
-            failures.append(f"tool_drag with reuse_factor on 2 ranks differs from the serial run: {c.stdout}")
+        print("tool_drag with reuse_factor, 2 ranks: (Newton iterations, factorisations, GMRES iterations): "
+              "serial {}, 2 ranks {}".format(*counts) + f"; evaluation {'distributed' if shared else 'NOT distributed'}")
         if not shared:
             failures.append("tool_drag with reuse_factor on 2 ranks: the evaluation was not distributed")
         for where, (iterations, factorizations, krylov) in zip(["serial", "2 ranks"], counts):
@@ -149,12 +152,8 @@ def main():
             failures.append(f"tool_drag, {package} on 2 ranks: exit status {r.returncode}, factorised by "
                             f"{sorted(used)}: {r.stderr[-400:]}")
             continue
-        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"), str(work / "tool_drag_serial"),
-                            str(out)], capture_output=True, text=True)
-        print(f"tool_drag, {package} on 2 ranks ({'scenario' if not extra else 'command line over scenario'}): "
-              + c.stdout.strip().replace("\n", "; "))
-        if c.returncode != 0:
-            failures.append(f"tool_drag, {package} on 2 ranks, differs from the serial run: {c.stdout}")
+        compare(work / "tool_drag_serial", out, f"tool_drag, {package} on 2 ranks "
+                f"({'scenario' if not extra else 'command line over scenario'})", failures)
 
     # A preconditioner type from the command line keeps MUMPS: LU for the twisted pair's symmetric tangent. On
     # one rank PETSc would otherwise take its own LU (it did, until the solver named MUMPS among its options).
@@ -171,11 +170,8 @@ def main():
             failures.append(f"twisted_pair_detection with -pc_type lu on {n} rank(s): exit status "
                             f"{r.returncode}: {log[-600:]}")
             continue
-        c = subprocess.run([sys.executable, str(HERE / "compare_runs.py"),
-                            str(work / "twisted_pair_detection_serial"), str(out)], capture_output=True, text=True)
-        print(f"twisted_pair_detection, LU on {n} rank(s): " + c.stdout.strip().replace("\n", "; "))
-        if c.returncode != 0:
-            failures.append(f"twisted_pair_detection, LU on {n} rank(s), differs from the serial run: {c.stdout}")
+        compare(work / "twisted_pair_detection_serial", out, f"twisted_pair_detection, LU on {n} rank(s)",
+                failures)
 
     # Bad input: one message, status 2 on every rank (mpirun returns a rank's non-zero status), no folder.
     bad = work / "bad.yaml"

@@ -10,11 +10,13 @@
 //    DIR/CASE.K.steps.csv and its final unknowns to DIR/CASE.K.state.csv, CASE being the test's name ('/' as
 //    '_') and K counting the simulations of one test from 0.
 
+#include <algorithm>
 #include <cstdio>
 #include <cstdlib>
 #include <map>
 #include <stdexcept>
 #include <string>
+#include <string_view>
 #include <utility>
 #include <vector>
 
@@ -22,26 +24,25 @@
 
 #include "nodus/parallel/mpi_session.hpp"
 #include "nodus/scenario/scenario.hpp"
+#include "nodus/scenario/yaml_reader.hpp"
 #include "nodus/simulation/simulation.hpp"
 
 namespace nodus::verification {
 
-/// The scenario with the linear solver of NODUS_VERIFICATION_SOLVER, if set.
+/// The scenario with the linear solver of NODUS_VERIFICATION_SOLVER, if set, read as the scenario reads
+/// solver.linear_solver.
 inline scenario::Scenario with_verification_solver(scenario::Scenario s) {
   const char* name = std::getenv("NODUS_VERIFICATION_SOLVER");
   if (name == nullptr || *name == '\0') return s;
-  static const std::map<std::string, scenario::LinearSolverKind> kinds = {
-      {"cholmod", scenario::LinearSolverKind::cholmod},
-      {"umfpack", scenario::LinearSolverKind::umfpack},
-      {"mumps", scenario::LinearSolverKind::mumps},
-      {"klu", scenario::LinearSolverKind::klu},
-      {"petsc", scenario::LinearSolverKind::petsc}};
-  const auto kind = kinds.find(name);
-  if (kind == kinds.end())
-    throw std::invalid_argument(
-        "NODUS_VERIFICATION_SOLVER: expected cholmod, umfpack, mumps, klu or petsc, got " +
-        std::string(name));
-  s.solver.linear_solver = kind->second;
+  const auto keys = scenario::SolverSettings::keys();
+  const auto key =
+      std::find_if(keys.begin(), keys.end(), [](const auto& k) { return k.path == "solver.linear_solver"; });
+  const std::vector<std::string_view> choices = scenario::split_choices(key->range);
+  const auto choice = std::find(choices.begin(), choices.end(), std::string_view(name));
+  if (choice == choices.end())
+    throw std::invalid_argument("NODUS_VERIFICATION_SOLVER: expected " + std::string(key->range) + ", got " +
+                                name);
+  key->set_choice(s.solver, static_cast<int>(choice - choices.begin()));
   for (scenario::StageSpec& stage : s.stages) stage.linear_solver = scenario::StageLinearSolver::solver;
   return s;
 }
