@@ -54,6 +54,12 @@ py::dict step_dict(const simulation::Simulation& sim, const simulation::StepReco
   d["min_chord"] = r.min_chord;
   d["min_clearance"] = r.min_clearance;
   d["ends_stage"] = r.ends_stage;
+  d["step_size"] = r.step_size;
+  d["entered"] = r.regime_changes.entered;
+  d["left"] = r.regime_changes.left;
+  d["to_slip"] = r.regime_changes.to_slip;
+  d["to_stick"] = r.regime_changes.to_stick;
+  d["cutback_causes"] = r.cutback_causes;
   py::dict reactions;
   for (std::size_t c = 0; c < r.sections.size(); ++c) {
     py::dict f;

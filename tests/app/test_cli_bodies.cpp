@@ -92,7 +92,8 @@ TEST(CliBodies, TwoConditionsPrescribingOneUnknownOfABody) {
       0);
 }
 
-/// The last data line of a steps.csv as column -> value (no quoted fields here).
+/// The last data line of a steps.csv as column -> value (no quoted fields here; the text columns, stage and
+/// cutback_causes, as 0).
 std::map<std::string, double> last_row(const std::string& csv) {
   std::vector<std::string> lines;
   std::istringstream in(csv);
@@ -101,13 +102,14 @@ std::map<std::string, double> last_row(const std::string& csv) {
     std::vector<std::string> out;
     std::istringstream fields(line);
     for (std::string field; std::getline(fields, field, ',');) out.push_back(field);
+    if (!line.empty() && line.back() == ',') out.emplace_back();  // an empty last field
     return out;
   };
   const std::vector<std::string> header = split(lines.front()), values = split(lines.back());
   EXPECT_EQ(header.size(), values.size());
   std::map<std::string, double> row;
   for (std::size_t i = 0; i < std::min(header.size(), values.size()); ++i)
-    row[header[i]] = i == 1 ? 0.0 : std::stod(values[i]);  // column 1: the stage name
+    row[header[i]] = header[i] == "stage" || header[i] == "cutback_causes" ? 0.0 : std::stod(values[i]);
   return row;
 }
 
@@ -135,7 +137,8 @@ stages:
   EXPECT_TRUE(
       header.ends_with(",hold_fx,hold_fy,hold_fz,hold_mx,hold_my,hold_mz,pull_fx,pull_fy,pull_fz,"
                        "pull_mx,pull_my,pull_mz,base_fx,base_fy,base_fz,base_mx,base_my,base_mz,"
-                       "base_error,base_tie,cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie"))
+                       "base_error,base_tie,cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie,"
+                       "step_size,entered,left,to_slip,to_stick,cutback_causes"))
       << header;
 
   const std::map<std::string, double> row = last_row(csv);

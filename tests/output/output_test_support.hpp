@@ -78,6 +78,44 @@ inline std::vector<std::string> split(const std::string& text, char separator) {
   return parts;
 }
 
+/// The records of a CSV text (RFC 4180): fields separated by commas, records by line ends outside double
+/// quotes; a quoted field holds commas, line ends and doubled quotes (one quote each). The records of
+/// `text`'s lines, the last line end optional.
+inline std::vector<std::vector<std::string>> csv_records(const std::string& text) {
+  std::vector<std::vector<std::string>> records;
+  std::vector<std::string> record;
+  std::string field;
+  bool quoted = false;
+  for (std::size_t i = 0; i < text.size(); ++i) {
+    const char c = text[i];
+    if (quoted) {
+      if (c != '"')
+        field += c;
+      else if (i + 1 < text.size() && text[i + 1] == '"')
+        field += text[++i];
+      else
+        quoted = false;
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      record.push_back(field);
+      field.clear();
+    } else if (c == '\n') {
+      record.push_back(field);
+      field.clear();
+      records.push_back(record);
+      record.clear();
+    } else {
+      field += c;
+    }
+  }
+  if (!field.empty() || !record.empty()) {
+    record.push_back(field);
+    records.push_back(record);
+  }
+  return records;
+}
+
 inline std::vector<double> numbers(const std::string& text) {
   std::vector<double> values;
   std::istringstream in(text);

@@ -195,7 +195,11 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
                                          "l0_fx"};
   ASSERT_GE(steps[0].size(), leading.size());
   EXPECT_EQ(std::vector<std::string>(steps[0].begin(), steps[0].begin() + 21), leading);
-  EXPECT_EQ(steps[0].size(), 20u + 6u * 4u);
+  // Then six columns per condition, and last what made each step hard.
+  EXPECT_EQ(steps[0].size(), 20u + 6u * 4u + 6u);
+  EXPECT_EQ(
+      std::vector<std::string>(steps[0].end() - 6, steps[0].end()),
+      (std::vector<std::string>{"step_size", "entered", "left", "to_slip", "to_stick", "cutback_causes"}));
   for (std::size_t k = 0; k < records.size(); ++k) {
     const simulation::StepRecord& r = records[k];
     const auto& f = steps[1 + k];
@@ -205,6 +209,16 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
     EXPECT_EQ(std::stoi(f[10]), r.normal_iterations);
     EXPECT_EQ(std::stoi(f[14]), r.slipping);
     EXPECT_EQ(f[16], r.loops_converged ? "1" : "0");
+    // One step a stage, not cut back: the stage's load time, no causes.
+    EXPECT_EQ(std::stod(f[44]), 1.0);
+    EXPECT_EQ(std::stoi(f[45]), r.regime_changes.entered);
+    EXPECT_EQ(std::stoi(f[46]), r.regime_changes.left);
+    EXPECT_EQ(std::stoi(f[47]), r.regime_changes.to_slip);
+    EXPECT_EQ(std::stoi(f[48]), r.regime_changes.to_stick);
+    EXPECT_EQ(f[49], "");
+    EXPECT_EQ(r.cutbacks, 0);
+    EXPECT_GE(r.regime_changes.entered, 0);
+    EXPECT_GE(r.regime_changes.left, 0);
     // The sums and the extremes over the contact states the step ended with.
     double normal = 0.0, tangential = 0.0, penetration = 0.0;
     int slipping = 0;
@@ -220,6 +234,10 @@ TEST(ContactForceOutputs, FilesCarryTheContactStatesOfEachStep) {
     EXPECT_EQ(std::stoi(f[14]), slipping);
     EXPECT_GT(normal, 0.0);
   }
+
+  // The press: the elements of the step's first detection, in the initial state 0.01 mm apart, are open at
+  // the first evaluation and press once the upper beam is pushed onto the lower one: they entered contact.
+  EXPECT_GE(records[0].regime_changes.entered, 1);
 
   // contact_final.csv: the states of the last step; its normal forces sum to the step's normal force.
   expect_contact_table(dir / "contact_final.csv", *sim.contact(), &final_states);

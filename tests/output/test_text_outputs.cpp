@@ -2,7 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 #include <regex>
 
 #include <spdlog/spdlog.h>
@@ -21,17 +23,22 @@
 namespace nodus::output {
 namespace {
 
+/// The columns of what made a step hard, last in the header.
+const std::string kHardColumns = ",step_size,entered,left,to_slip,to_stick,cutback_causes";
+
 TEST(StepsCsv, HeaderNamesContactColumnsThenSixColumnsPerCondition) {
   EXPECT_EQ(steps_csv_header({}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
             "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
-            "loops_converged,min_orientation,min_chord,min_clearance");
+            "loops_converged,min_orientation,min_chord,min_clearance" +
+                kHardColumns);
   EXPECT_EQ(steps_csv_header({"left", "right"}),
             "step,stage,time,newton_iterations,cutbacks,residual,increment,zones,contact_elements,detections,"
             "normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,stabilization_force,"
             "loops_converged,min_orientation,min_chord,min_clearance,left_fx,left_fy,left_"
             "fz,left_mx,left_my,left_mz,right_fx,right_fy,right_fz,right_mx,right_my,"
-            "right_mz");
+            "right_mz" +
+                kHardColumns);
 }
 
 TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
@@ -50,11 +57,13 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   // Without contact the zone and element counts and the contact-loop figures are 0, no loop ended at its cap
   // (loops_converged 1), and there is no clearance (nan).
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,0,0,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20,"
+            "0,0,0,0,0,");
   r.zones = 3;
   r.contact_elements = 41;
   EXPECT_EQ(steps_csv_row(r, "bend", 1),
-            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20");
+            "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,0,0,0,0,0,0,0,1,1,1,nan,1,-2,0.125,0,1234.5,-1e-20,"
+            "0,0,0,0,0,");
   r.detections = 2;
   r.normal_iterations = 5;
   r.penetration_ratio = 2.0 / 3.0;
@@ -69,12 +78,66 @@ TEST(StepsCsv, RowHoldsRecordWithTenDigits) {
   EXPECT_EQ(
       steps_csv_row(r, "bend", 1),
       "7,bend,0.3333333333,4,1,2.5e-09,1e-12,3,41,2,5,0.6666666667,12.5,3.333333333e-08,17,0.25,0,-0.25,"
-      "0.3333333333,-0.0125,1,-2,0.125,0,1234.5,-1e-20");
+      "0.3333333333,-0.0125,1,-2,0.125,0,1234.5,-1e-20,0,0,0,0,0,");
+  // What made the step hard: its size [s], the changes of regime, the causes of its cutback.
+  r.step_size = 0.0625;
+  r.regime_changes = {3, 1, 4, 2};
+  r.cutback_causes = {"no progress"};
+  EXPECT_TRUE(steps_csv_row(r, "bend", 1).ends_with(",1234.5,-1e-20,0.0625,3,1,4,2,no progress"))
+      << steps_csv_row(r, "bend", 1);
   // A missing section gives empty fields; a stage name with a comma is quoted.
   const std::string row = steps_csv_row(r, "a,b", 2);
-  EXPECT_EQ(testing::split(row, ',').size(), 20u + 12u + 1u);  // the quoted comma splits once more
+  EXPECT_EQ(testing::split(row, ',').size(), 20u + 12u + 6u + 1u);  // the quoted comma splits once more
   EXPECT_NE(row.find(",\"a,b\","), std::string::npos);
-  EXPECT_EQ(row.substr(row.size() - 6), ",,,,,,");
+  EXPECT_NE(row.find(",,,,,,0.0625,3,1,4,2,no progress"), std::string::npos);
+}
+
+TEST(StepsCsv, CutbackCausesAreOneQuotedField) {
+  // Failure messages hold commas and quotes: joined with " | ", they are one field, quoted as RFC 4180 says,
+  // which a CSV reader reads back as they were.
+  const std::vector<std::string> causes{
+      "the axes of beams 'a' at s = 2 mm and 'b' at s = 2 mm passed through each other at 0.5 of the step",
+      "penetration 12.5 times max_penetration (more than 10), at \"zone 3\"", "the tangent is singular"};
+  const std::string joined = causes[0] + " | " + causes[1] + " | " + causes[2];
+  EXPECT_EQ(cutback_causes_field(causes), "\"" + causes[0] + " | " +
+                                              "penetration 12.5 times max_penetration (more than 10), at "
+                                              "\"\"zone 3\"\" | the tangent is singular\"");
+  EXPECT_EQ(cutback_causes_field({}), "");
+  EXPECT_EQ(cutback_causes_field({"no progress"}), "no progress");
+
+  simulation::StepRecord r;
+  r.step = 4;
+  r.time = 0.75;
+  r.cutbacks = 3;
+  r.step_size = 0.125;
+  r.regime_changes = {5, 2, 1, 0};
+  r.cutback_causes = causes;
+  r.sections.resize(1);
+  const std::vector<std::string> names{"grip, left"};  // a quoted header name too
+  const std::string text = steps_csv_header(names) + "\n" + steps_csv_row(r, "pull", 1) + "\n";
+  const auto records = testing::csv_records(text);
+  ASSERT_EQ(records.size(), 2u);
+  ASSERT_EQ(records[1].size(), records[0].size());
+  const auto field = [&](const std::string& column) {
+    const auto at = std::find(records[0].begin(), records[0].end(), column);
+    EXPECT_NE(at, records[0].end()) << column;
+    return at == records[0].end() ? std::string()
+                                  : records[1][static_cast<std::size_t>(at - records[0].begin())];
+  };
+  EXPECT_EQ(field("grip, left_fx"), "0");
+  EXPECT_EQ(field("cutbacks"), "3");
+  EXPECT_EQ(field("step_size"), "0.125");
+  EXPECT_EQ(field("entered"), "5");
+  EXPECT_EQ(field("left"), "2");
+  EXPECT_EQ(field("to_slip"), "1");
+  EXPECT_EQ(field("to_stick"), "0");
+  EXPECT_EQ(field("cutback_causes"), joined);
+  EXPECT_EQ(records[0].back(), "cutback_causes");
+  // A resumed run cuts such a file after a step's row, a quoted field and all.
+  simulation::StepRecord next;
+  next.step = 5;
+  const std::string two = text + steps_csv_row(next, "pull", 1) + "\n";
+  EXPECT_EQ(steps_csv_up_to(two, 4), text);
 }
 
 TEST(StepsCsv, RowHasAFieldPerHeaderColumn) {
@@ -125,12 +188,14 @@ TEST(StepsCsv, BodyColumnsAfterTheConditions) {
       head +
           ",hold_fx,hold_fy,hold_fz,hold_mx,hold_my,hold_mz,"
           "y.r1.start_fx,y.r1.start_fy,y.r1.start_fz,y.r1.start_mx,y.r1.start_my,y.r1.start_mz,"
-          "y.r1.start_error,y.r1.start_tie,cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie");
+          "y.r1.start_error,y.r1.start_tie,cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie" +
+          kHardColumns);
   EXPECT_EQ(steps_csv_header({}, {"cap"}),
-            head + ",cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie");
+            head + ",cap_fx,cap_fy,cap_fz,cap_mx,cap_my,cap_mz,cap_error,cap_tie" + kHardColumns);
   // A body name that needs quoting is quoted as a condition name is.
   EXPECT_EQ(steps_csv_header({}, {"a,b"}).substr(head.size()),
-            ",\"a,b_fx\",\"a,b_fy\",\"a,b_fz\",\"a,b_mx\",\"a,b_my\",\"a,b_mz\",\"a,b_error\",\"a,b_tie\"");
+            ",\"a,b_fx\",\"a,b_fy\",\"a,b_fz\",\"a,b_mx\",\"a,b_my\",\"a,b_mz\",\"a,b_error\",\"a,b_tie\"" +
+                kHardColumns);
 
   // The row: force [N], moment [N mm], error [mm], tie [N] of each body, with ten significant digits.
   simulation::StepRecord r;
@@ -147,7 +212,7 @@ TEST(StepsCsv, BodyColumnsAfterTheConditions) {
   r.bodies = {b};
   EXPECT_EQ(steps_csv_row(r, "twist", 1, 1),
             "3,twist,0.5,0,0,0,0,0,0,0,0,0,0,0,0,0,1,1,1,nan,1,0,0,0,0,0,"
-            "-1,2.5,0.3333333333,0,-1e-20,1234.5,6.666666667e-07,1e-09");
+            "-1,2.5,0.3333333333,0,-1e-20,1234.5,6.666666667e-07,1e-09,0,0,0,0,0,");
   // Every header column has its field; a body missing from the record gives empty fields.
   const auto header = testing::split(steps_csv_header({"hold"}, {"y.r1.start", "cap"}), ',');
   const auto fields = testing::split(steps_csv_row(r, "twist", 1, 2), ',');
@@ -158,10 +223,12 @@ TEST(StepsCsv, BodyColumnsAfterTheConditions) {
   EXPECT_EQ(fields[32], "6.666666667e-07");
   EXPECT_EQ(header[33], "y.r1.start_tie");
   EXPECT_EQ(fields[33], "1e-09");
-  for (std::size_t k = 34; k < fields.size(); ++k) EXPECT_EQ(fields[k], "") << header[k];
+  for (std::size_t k = 34; k < 42; ++k) EXPECT_EQ(fields[k], "") << header[k];
+  EXPECT_EQ(header[42], "step_size");
+  EXPECT_EQ(fields.size(), 42u + 6u);
   // Without bodies the row is what it was: no body fields.
   EXPECT_EQ(steps_csv_row(r, "twist", 1), steps_csv_row(r, "twist", 1, 0));
-  EXPECT_EQ(testing::split(steps_csv_row(r, "twist", 1), ',').size(), 20u + 6u);
+  EXPECT_EQ(testing::split(steps_csv_row(r, "twist", 1), ',').size(), 20u + 6u + 6u);
 }
 
 TEST(Summary, JsonHoldsEveryField) {
@@ -294,6 +361,32 @@ TEST(Progress, LineFormat) {
   EXPECT_NE(progress_line(p).find("remaining ~2.5 s"), std::string::npos) << progress_line(p);
   p.remaining_seconds = 123.4;  // RemainingTime's estimate, when given, is the one shown
   EXPECT_NE(progress_line(p).find("remaining ~123 s"), std::string::npos) << progress_line(p);
+  // The size of the step: a fraction of the stage's nominal step below it, else in load time.
+  p.nominal_step = 0.25;
+  p.step_size = 0.25 / 8;
+  EXPECT_TRUE(progress_line(p).starts_with(
+      "stage twist (2/3), step 17, step size 1/8 of nominal, load time 2.5 / 3, Newton its 5"))
+      << progress_line(p);
+  p.step_size = 0.25;
+  EXPECT_NE(progress_line(p).find("step 17, step size 0.25 s, load time"), std::string::npos)
+      << progress_line(p);
+}
+
+TEST(Progress, StepSizeAsAFractionOfTheNominalStep) {
+  EXPECT_EQ(step_size_text(0.125, 1.0), "1/8 of nominal");
+  EXPECT_EQ(step_size_text(0.1 / 3.0, 0.1), "1/3 of nominal");
+  EXPECT_EQ(step_size_text(std::ldexp(0.3, -12), 0.3), "1/4096 of nominal");
+  EXPECT_EQ(step_size_text(0.375, 1.0), "0.375 of nominal");  // the rest of a stage after cutbacks
+  // At the nominal step (to rounding), above it (the last step of a stage takes a remainder within 1 % of
+  // it) or without one: in load time.
+  EXPECT_EQ(step_size_text(0.1, 0.1), "0.1 s");
+  EXPECT_EQ(step_size_text(0.1 * (1 - 1e-12), 0.1), "0.1 s");
+  EXPECT_EQ(step_size_text(0.101, 0.1), "0.101 s");
+  EXPECT_EQ(step_size_text(0.125, std::numeric_limits<double>::quiet_NaN()), "0.125 s");
+  EXPECT_EQ(step_size_text(0.125, 0.0), "0.125 s");
+  // Unknown: nothing, and the line leaves it out.
+  EXPECT_EQ(step_size_text(0.0, 1.0), "");
+  EXPECT_EQ(step_size_text(std::numeric_limits<double>::quiet_NaN(), 1.0), "");
 }
 
 TEST(Logging, DefaultLoggerWritesToStderr) {

@@ -190,6 +190,13 @@ def test_steps_and_callbacks(tmp_path):
     assert [r["step"] for r in records] == list(range(1, len(expected) + 1))
     assert [r["stage"] for r in records] == stage_of_row
     assert [r["time"] for r in records] == pytest.approx([float(r["time"]) for r in expected], rel=1e-9)
+    # What made each step hard, as steps.csv says it (csv reads its quoted causes back as one field).
+    for r, row in zip(records, expected):
+        assert r["step_size"] == pytest.approx(float(row["step_size"]), rel=1e-9)
+        assert [r[k] for k in ("entered", "left", "to_slip", "to_stick")] == \
+            [int(row[k]) for k in ("entered", "left", "to_slip", "to_stick")]
+        assert len(r["cutback_causes"]) == r["cutbacks"] == int(row["cutbacks"])
+        assert " | ".join(r["cutback_causes"]) == row["cutback_causes"]
     assert sim.finished and sim.stage is None and sim.steps == len(expected)
     assert sim.run() == 0 and sim.run_stage() is None and sim.step() is None  # nothing left to do
     assert sim.last_step["step"] == sim.steps == len(expected)

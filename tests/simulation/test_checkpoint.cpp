@@ -84,6 +84,9 @@ void expect_same(const StepRecord& a, const StepRecord& b) {
   EXPECT_EQ(a.normal_force, b.normal_force);
   EXPECT_EQ(a.tangential_force, b.tangential_force);
   EXPECT_EQ(a.slipping, b.slipping);
+  EXPECT_EQ(a.step_size, b.step_size);
+  EXPECT_EQ(a.regime_changes, b.regime_changes);
+  EXPECT_EQ(a.cutback_causes, b.cutback_causes);
   ASSERT_EQ(a.sections.size(), b.sections.size());
   for (std::size_t c = 0; c < a.sections.size(); ++c) {
     EXPECT_EQ(a.sections[c].force, b.sections[c].force) << "condition " << c;

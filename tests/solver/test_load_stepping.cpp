@@ -10,7 +10,8 @@
 //  - sliver: a step within 1 % of the remainder of the interval (or longer than it) takes all of it;
 //  - secant predictor: each step starts from the linear extrapolation of the last converged step;
 //  - resumption: advance() stopped after a step and continued from its StepperState gives the same steps;
-//  - the step solver sees the halvings of the attempt so far (StepperState::cutbacks), 0 between steps.
+//  - the step solver sees the halvings of the attempt so far (StepperState::cutbacks), 0 between steps;
+//  - each converged step carries its size and the failure messages of its own cutbacks.
 // And with the real Newton solver, whose iterations (at most 6 here) do not suffice for a large step of the
 // hardening springs, the cutbacks take the stepping through and the end state solves the springs.
 
@@ -166,6 +167,44 @@ TEST(LoadStepping, CutbackHalvesAFailedStepAndRestores) {
   EXPECT_EQ(solver.attempts[2].start, Eigen::VectorXd::Zero(2));
   EXPECT_EQ(steps.back().time, 1.0);
   EXPECT_LT((p.unknowns() - Springs::solution(1.0)).norm(), 1e-14);
+  // Each step says its size, and why its failed attempts failed (the step solver's failure), in order.
+  for (const StepResult& s : steps) EXPECT_EQ(s.step, 0.25);
+  EXPECT_EQ(steps[0].cutback_causes, (std::vector<std::string>{"scripted failure", "scripted failure"}));
+  for (std::size_t k = 1; k < 4; ++k) EXPECT_TRUE(steps[k].cutback_causes.empty()) << k;
+}
+
+TEST(LoadStepping, EachStepCarriesTheCausesOfItsOwnCutbacks) {
+  // Steps of 0.25 (no growth) over [0, 0.5]; an attempt fails beyond 0.125 except from the start, with a
+  // message naming its size (and holding commas): the first step converges at once, the second after one
+  // cutback to 0.125, the third (0.125, what is left) at once, its causes not carried over from the second.
+  Springs p;
+  ScriptedSolver solver;
+  solver.fails = [](double from, double step) { return from > 0.0 && step > 0.125; };
+  StepControl c;
+  c.nominal_step = 0.25;
+  c.growth = 1.0;
+  std::vector<StepResult> steps;
+  const StepSolver scripted = solver.solver();
+  const AdvanceResult result = advance(
+      p,
+      [&](SteppedProblem& problem) {
+        const auto& springs = dynamic_cast<Springs&>(problem);
+        const double step = springs.time() - springs.committed_time();
+        NewtonReport r = scripted(problem);
+        if (!r.converged) r.failure = "step of " + std::to_string(step) + ", at 1, 2";
+        return r;
+      },
+      0.0, 0.5, c, [&](const StepResult& s) { steps.push_back(s); });
+  ASSERT_TRUE(result.completed) << result.failure;
+  ASSERT_EQ(steps.size(), 3u);
+  EXPECT_EQ(steps[0].step, 0.25);
+  EXPECT_TRUE(steps[0].cutback_causes.empty());
+  EXPECT_EQ(steps[1].cutbacks, 1);
+  EXPECT_EQ(steps[1].step, 0.125);
+  EXPECT_EQ(steps[1].cutback_causes, std::vector<std::string>{"step of 0.250000, at 1, 2"});
+  EXPECT_EQ(steps[2].cutbacks, 0);
+  EXPECT_EQ(steps[2].step, 0.125);
+  EXPECT_TRUE(steps[2].cutback_causes.empty());
 }
 
 TEST(LoadStepping, GivesUpAfterMaxCutbacksWithOneLine) {

@@ -1,12 +1,29 @@
 #include "nodus/contact/contact_term.hpp"
 
 #include <array>
+#include <stdexcept>
+#include <string>
 
 #include <spdlog/spdlog.h>
 
 #include "nodus/solver/sparse_assembler.hpp"
 
 namespace nodus::contact {
+
+RegimeChanges compare_regimes(const std::vector<ContactState>& before, const std::vector<ContactState>& now) {
+  if (before.size() != now.size())
+    throw std::invalid_argument("compare_regimes: " + std::to_string(before.size()) + " states before, " +
+                                std::to_string(now.size()) + " now");
+  RegimeChanges changes;
+  for (std::size_t k = 0; k < now.size(); ++k) {
+    const bool presses = now[k].normal_reaction > 0.0;
+    const bool pressed = before[k].normal_reaction > 0.0;
+    if (presses != pressed) ++(presses ? changes.entered : changes.left);
+    if (now[k].slip != before[k].slip && presses && pressed)
+      ++(now[k].slip ? changes.to_slip : changes.to_stick);
+  }
+  return changes;
+}
 
 void ContactTerm::couplings(std::vector<std::vector<int>>& groups) const {
   for (const ContactElement& e : geometry_.elements) {
@@ -22,7 +39,20 @@ void ContactTerm::set_elements(ContactGeometry geometry, std::vector<double> pen
   penalty_ = std::move(penalty);
   reversible_committed_ = std::move(reversible);
   states_.assign(geometry_.elements.size(), ContactState{});
+  // Other elements: the next evaluation is compared with none.
   last_states_.clear();
+  compare_ = pending_ = false;
+}
+
+void ContactTerm::set_states(std::vector<ContactState> states) {
+  states_ = std::move(states);
+  if (pending_) note_evaluation();
+}
+
+void ContactTerm::reset_regime_changes() {
+  changes_ = {};
+  last_states_.clear();
+  compare_ = pending_ = false;
 }
 
 void ContactTerm::set_laws(double regularization, std::optional<FrictionLaw> friction,
@@ -86,36 +116,39 @@ void ContactTerm::add(const model::TermState& state, Eigen::VectorXd& residual,
     return tangent ? tangent->split_columns(parts) : solver::even_split(model_.dofs().num_blocks(), parts);
   };
   assembly_.run(all ? count : some.size(), compute, scatter, split);
-  if (spdlog::should_log(spdlog::level::debug)) log_regime_changes();
+  // A distributed evaluation computed this rank's elements only: it is counted when set_states() brings the
+  // others' (EquilibriumProblem::share_among_ranks), so that every rank counts the same changes.
+  pending_ = !all;
+  if (all) note_evaluation();
 }
 
-void ContactTerm::log_regime_changes() {
-  // Which elements changed regime since the last evaluation (of the same elements): a Newton solve whose
+void ContactTerm::note_evaluation() {
+  pending_ = false;
+  // Which elements changed regime since the last evaluation of the same elements: a Newton solve whose
   // residual wanders while elements keep entering and leaving contact, or sticking and slipping, shows it
-  // here.
-  int pressing = 0, slipping = 0, entered = 0, left = 0, to_slip = 0, to_stick = 0, reversed = 0;
-  const bool compare = last_states_.size() == states_.size();
-  for (std::size_t k = 0; k < states_.size(); ++k) {
-    const ContactState& now = states_[k];
-    const bool presses = now.normal_reaction > 0.0;
-    pressing += presses;
-    slipping += now.slip;
-    if (!compare) continue;
-    const ContactState& before = last_states_[k];
-    const bool pressed = before.normal_reaction > 0.0;
-    if (presses != pressed) ++(presses ? entered : left);
-    // Stick and slip of an element that presses at both evaluations (one that leaves contact stops
-    // slipping).
-    if (now.slip != before.slip && presses && pressed) ++(now.slip ? to_slip : to_stick);
-    // Slipping at both evaluations, against the direction of the last: across the stick band in one
-    // iteration.
-    if (now.slip && before.slip && now.tangential.dot(before.tangential) < 0.0) ++reversed;
+  // here (steps.csv sums them over the step).
+  const bool compare = compare_ && last_states_.size() == states_.size();
+  const RegimeChanges changes = compare ? compare_regimes(last_states_, states_) : RegimeChanges{};
+  changes_ += changes;
+  if (spdlog::should_log(spdlog::level::debug)) {
+    int pressing = 0, slipping = 0, reversed = 0;
+    for (std::size_t k = 0; k < states_.size(); ++k) {
+      const ContactState& now = states_[k];
+      pressing += now.normal_reaction > 0.0;
+      slipping += now.slip;
+      // Slipping at both evaluations, against the direction of the last: across the stick band in one
+      // iteration.
+      if (compare && now.slip && last_states_[k].slip && now.tangential.dot(last_states_[k].tangential) < 0.0)
+        ++reversed;
+    }
+    spdlog::debug(
+        "contact: {} of {} elements pressing ({} entered, {} left), {} slipping (pressing before and "
+        "after: {} began, {} stuck; {} slip the other way)",
+        pressing, states_.size(), changes.entered, changes.left, slipping, changes.to_slip, changes.to_stick,
+        reversed);
   }
   last_states_ = states_;
-  spdlog::debug(
-      "contact: {} of {} elements pressing ({} entered, {} left), {} slipping (pressing before and "
-      "after: {} began, {} stuck; {} slip the other way)",
-      pressing, states_.size(), entered, left, slipping, to_slip, to_stick, reversed);
+  compare_ = true;
 }
 
 void ContactTerm::commit(const model::TermState& /*state*/) {

@@ -27,6 +27,29 @@ struct ContactState {
   bool slip = false;
 };
 
+/// Changes of regime of contact elements between evaluations (counts).
+struct RegimeChanges {
+  int entered = 0;   ///< elements that began to press (R_N > 0 after R_N = 0)
+  int left = 0;      ///< elements that stopped pressing (R_N = 0 after R_N > 0)
+  int to_slip = 0;   ///< elements pressing at both evaluations that went from stick to slip
+  int to_stick = 0;  ///< elements pressing at both evaluations that went from slip to stick
+
+  RegimeChanges& operator+=(const RegimeChanges& other) {
+    entered += other.entered;
+    left += other.left;
+    to_slip += other.to_slip;
+    to_stick += other.to_stick;
+    return *this;
+  }
+  bool operator==(const RegimeChanges&) const = default;
+};
+
+/// The changes of regime from `before` to `now`, the states of the same contact elements (element k in both)
+/// at two successive evaluations. Pressing: R_N > 0. Stick and slip changes are counted for elements that
+/// press at both evaluations only (one that leaves contact stops slipping). Throws std::invalid_argument if
+/// the two differ in size.
+RegimeChanges compare_regimes(const std::vector<ContactState>& before, const std::vector<ContactState>& now);
+
 class ContactTerm final : public model::Term {
  public:
   explicit ContactTerm(const model::Model& model) : model_(model) {}
@@ -77,20 +100,38 @@ class ContactTerm final : public model::Term {
   const std::vector<Eigen::Vector3d>& reversible_committed() const { return reversible_committed_; }
   /// Per contact element, at the last evaluation.
   const std::vector<ContactState>& states() const { return states_; }
-  /// Restores the states of a saved run (one per element).
-  void set_states(std::vector<ContactState> states) { states_ = std::move(states); }
+  /// Restores the states of a saved run (one per element), or, in a distributed evaluation
+  /// (EquilibriumProblem::distribute), hands every rank the states of all elements after add() computed its
+  /// own: these then count as that evaluation's (regime_changes).
+  void set_states(std::vector<ContactState> states);
+
+  /// The changes of regime of the contact elements summed over the evaluations since the last
+  /// reset_regime_changes() (or since the term was made), each evaluation compared with the previous one of
+  /// the same elements: the first evaluation after set_elements() (a new detection, or the elements of the
+  /// committed state put back) or after the reset is compared with none. Counted at every evaluation, at a
+  /// cost of O(elements).
+  const RegimeChanges& regime_changes() const { return changes_; }
+  /// Zeroes regime_changes() and forgets the last evaluation: the next one is compared with none (a step
+  /// attempt counts its own changes, a resumed run as the run never stopped).
+  void reset_regime_changes();
 
  private:
-  /// Logs (debug) how many elements press and slip, and how many changed since the last evaluation.
-  void log_regime_changes();
+  /// After an evaluation of all the elements: adds its changes of regime since the previous evaluation of the
+  /// same elements to changes_, and logs them (debug) with how many elements press and slip.
+  void note_evaluation();
 
   const model::Model& model_;
   ContactGeometry geometry_;
   std::vector<double> penalty_;
   std::vector<Eigen::Vector3d> reversible_committed_;
   std::vector<ContactState> states_;
-  /// For the log of --verbose: the states of the last evaluation logged.
+  /// The states of the previous evaluation, with which the next one is compared (when `compare_`).
   std::vector<ContactState> last_states_;
+  bool compare_ = false;  ///< last_states_ are those of the same elements at the previous evaluation
+  /// add() evaluated only some of the elements (distributed): the evaluation is counted when set_states()
+  /// brings those of the other ranks.
+  bool pending_ = false;
+  RegimeChanges changes_;  ///< since the last reset_regime_changes()
   double regularization_ = 0.0;
   std::optional<FrictionLaw> friction_;
   std::vector<double> pair_friction_;  ///< set_pair_friction

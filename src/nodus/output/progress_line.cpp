@@ -84,6 +84,17 @@ double RemainingTime::seconds() const {
   return cost_ * left;
 }
 
+std::string step_size_text(double step, double nominal) {
+  if (!(step > 0.0) || !std::isfinite(step)) return {};
+  if (nominal > 0.0 && std::isfinite(nominal) && step < (1.0 - 1e-9) * nominal) {
+    const double parts = nominal / step;
+    const double whole = std::round(parts);
+    if (std::abs(parts - whole) <= 1e-6 * whole) return fmt::format("1/{:.0f} of nominal", whole);
+    return fmt::format("{:.3g} of nominal", step / nominal);
+  }
+  return fmt::format("{:.6g} s", step);
+}
+
 std::string progress_line(const ProgressInfo& info) {
   const double remaining =
       std::isnan(info.remaining_seconds)
@@ -92,8 +103,10 @@ std::string progress_line(const ProgressInfo& info) {
   const std::string remaining_text = !std::isfinite(remaining) ? std::string("~? s")
                                      : remaining < 10          ? fmt::format("~{:.1f} s", remaining)
                                                                : fmt::format("~{:.0f} s", remaining);
-  return fmt::format("stage {} ({}/{}), step {}, load time {:.6g} / {:.6g}, ", info.stage_name,
-                     info.stage + 1, info.num_stages, info.step, info.time, info.end_time) +
+  const std::string size = step_size_text(info.step_size, info.nominal_step);
+  return fmt::format("stage {} ({}/{}), step {}, {}load time {:.6g} / {:.6g}, ", info.stage_name,
+                     info.stage + 1, info.num_stages, info.step,
+                     size.empty() ? std::string() : "step size " + size + ", ", info.time, info.end_time) +
          fmt::format("Newton its {}, residual {:.3e}, elapsed {:.1f} s, remaining {}", info.newton_iterations,
                      info.residual, info.elapsed_seconds, remaining_text);
 }

@@ -19,6 +19,10 @@ struct ProgressInfo {
   int newton_iterations = 0;   ///< of this step
   double residual = 0.0;       ///< at convergence [N]
   double elapsed_seconds = 0;  ///< wall-clock time since the start of the run [s]
+  /// Load-time size of this step [s] and the nominal step of its stage (duration / steps) [s]; NaN: unknown
+  /// (the line leaves the step size out).
+  double step_size = std::numeric_limits<double>::quiet_NaN();
+  double nominal_step = std::numeric_limits<double>::quiet_NaN();
   /// Wall time left [s] (RemainingTime); NaN: remaining_seconds(elapsed, start_time, time, end_time).
   double remaining_seconds = std::numeric_limits<double>::quiet_NaN();
 };
@@ -81,8 +85,15 @@ class RemainingTime {
   std::vector<double> profile_u_, profile_wall_;            ///< the earlier run's timing, by progress u
 };
 
-/// "stage NAME (i/N), step S, load time T / T_end, Newton its K, residual R, elapsed 12.3 s, remaining ~45 s"
-/// (one decimal below 10 s; "remaining ~? s" while unknown).
+/// The size of a step for a progress line: below the nominal step, as a fraction of it ("1/8 of nominal"
+/// where the nominal step is a whole multiple of it, to 1e-6, as after cutbacks; else "0.375 of nominal",
+/// three significant digits); otherwise (or without a nominal step) in load time ("0.125 s"). Empty if `step`
+/// is not a positive number.
+std::string step_size_text(double step, double nominal);
+
+/// "stage NAME (i/N), step S, step size Z, load time T / T_end, Newton its K, residual R, elapsed 12.3 s,
+/// remaining ~45 s" (Z: step_size_text, left out with its label when the step size is unknown; one decimal
+/// below 10 s; "remaining ~? s" while unknown).
 std::string progress_line(const ProgressInfo& info);
 
 }  // namespace nodus::output

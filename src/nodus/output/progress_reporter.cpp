@@ -90,6 +90,11 @@ void ProgressReporter::on_step(const simulation::Simulation& sim, const simulati
   info.start_time = start_time_;
   info.end_time = num_stages > 0 ? sim.stage_end_time(num_stages - 1) : record.time;
   info.newton_iterations = record.newton_iterations;
+  info.step_size = record.step_size;
+  if (record.stage >= 0 && record.stage < num_stages) {
+    const scenario::StageSpec& stage = stages[static_cast<std::size_t>(record.stage)];
+    if (stage.steps > 0) info.nominal_step = stage.duration / stage.steps;
+  }
   info.residual = record.residual;
   info.elapsed_seconds = std::chrono::duration<double>(now - start_).count();
   if (remaining_) info.remaining_seconds = remaining_->seconds();

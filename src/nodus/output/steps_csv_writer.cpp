@@ -25,7 +25,18 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
   for (const std::string& name : body_names)
     for (const char* component : {"fx", "fy", "fz", "mx", "my", "mz", "error", "tie"})
       header += "," + csv_field(name + "_" + component);
+  // What made each step hard: last, so that the other columns keep their positions.
+  header += ",step_size,entered,left,to_slip,to_stick,cutback_causes";
   return header;
+}
+
+std::string cutback_causes_field(const std::vector<std::string>& causes) {
+  std::string joined;
+  for (std::size_t k = 0; k < causes.size(); ++k) {
+    if (k > 0) joined += " | ";
+    joined += causes[k];
+  }
+  return csv_field(joined);
 }
 
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
@@ -59,6 +70,10 @@ std::string steps_csv_row(const simulation::StepRecord& record, const std::strin
       fmt::format_to(std::back_inserter(row), ",,,,,,,,");
     }
   }
+  const contact::RegimeChanges& changes = record.regime_changes;
+  fmt::format_to(std::back_inserter(row), ",{:.10g},{},{},{},{},{}", record.step_size, changes.entered,
+                 changes.left, changes.to_slip, changes.to_stick,
+                 cutback_causes_field(record.cutback_causes));
   return fmt::to_string(row);
 }
 

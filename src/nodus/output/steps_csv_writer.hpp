@@ -1,7 +1,7 @@
 #pragma once
 /// DIR/steps.csv: one row per converged load step (step counters, Newton statistics, the size of the contact
-/// geometry, what the contact loops did and the contact forces they reached, and the force and moment on
-/// every condition's section). Columns are documented in docs/output.md.
+/// geometry, what the contact loops did and the contact forces they reached, the force and moment on every
+/// condition's section, and what made the step hard). Columns are documented in docs/output.md.
 
 #include <cstdio>
 #include <filesystem>
@@ -17,7 +17,8 @@ namespace nodus::output {
 /// contact_elements,detections,normal_iterations,penetration_ratio,normal_force,tangential_force,slipping,
 /// stabilization_force,loops_converged,min_orientation,min_chord,min_clearance,
 /// then NAME_fx,NAME_fy,NAME_fz,NAME_mx,NAME_my,NAME_mz for each condition name in order, then
-/// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error,BODY_tie for each rigid body name in order.
+/// BODY_fx,BODY_fy,BODY_fz,BODY_mx,BODY_my,BODY_mz,BODY_error,BODY_tie for each rigid body name in order,
+/// then step_size,entered,left,to_slip,to_stick,cutback_causes.
 std::string steps_csv_header(const std::vector<std::string>& condition_names,
                              const std::vector<std::string>& body_names = {});
 
@@ -29,8 +30,14 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
 /// 0 (1 without contact forces). Sections missing from the
 /// record (fewer than `num_conditions`) give empty fields, as do bodies (fewer than `num_bodies`): the force
 /// [N] and moment [N mm] each exerts on its sections, about its point, its error [mm] and its tie force [N].
+/// Last come the step's size [s], its changes of regime of the contact elements (StepRecord::regime_changes)
+/// and its cutback causes (cutback_causes_field).
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
                           int num_conditions, int num_bodies = 0);
+
+/// The failure messages of a step's cutbacks joined with " | " as one CSV field (csv_field: quoted when they
+/// hold a comma, a double quote or a line break); empty when there were none.
+std::string cutback_causes_field(const std::vector<std::string>& causes);
 
 /// `text` (a steps.csv) cut after the data line of step `last_step`: the header and the lines of the steps up
 /// to `last_step`, each with its line end (a quoted field may hold line breaks).

@@ -378,6 +378,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   // The fold check of the converged state, which the step's record reports once the step is accepted.
   model::FoldCheck folds;
   const solver::StepSolver solve_step = [&](solver::SteppedProblem& p) {
+    // The changes of regime of the contact elements that steps.csv reports are those of this attempt: a
+    // failed one before a cutback does not count into the step.
+    problem_->contact().reset_regime_changes();
     // The last attempt a step is allowed gets Newton's whole budget: giving up early there would end the run
     // (solver.progress_window; docs/performance.md, "Failing sooner").
     newton.set_progress_window(
@@ -507,6 +510,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
           record.residual_tolerance = r.newton.residual_tolerance;
           record.increment = r.newton.increment;
           record.ends_stage = r.time == t1;
+          record.step_size = r.step;
+          record.cutback_causes = r.cutback_causes;
           summary.newton_iterations += r.newton.iterations;
           ++summary.new_steps;
           if (loops) {
@@ -527,6 +532,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                   clearance.value, model_.beam(clearance.beam_i).name(), clearance.s_i,
                   model_.beam(clearance.beam_j).name(), clearance.s_j);
             record.slipping = c.slipping;
+            record.regime_changes = problem_->contact().regime_changes();
             record.loops_converged = c.loops_converged();
             if (!record.loops_converged && !warned_capped) {
               warned_capped = true;

@@ -66,6 +66,14 @@ struct StepRecord {
   /// (contact::min_clearance) [mm]; NaN without contact, +infinity if no two parts are within delta_prox.
   double min_clearance = std::numeric_limits<double>::quiet_NaN();
   bool ends_stage = false;  ///< the step reached the end of its stage
+  /// What made the step hard. The changes of regime of the contact elements over the evaluations of the
+  /// step's successful attempt (all its Newton solves, contact loops 2 and 3 included), each evaluation
+  /// compared with the previous one of the same elements (contact::ContactTerm::regime_changes); 0 without
+  /// contact forces.
+  contact::RegimeChanges regime_changes;
+  /// Why each attempt of the step that failed before it converged failed, in order (`cutbacks` entries).
+  std::vector<std::string> cutback_causes;
+  double step_size = 0.0;  ///< load-time size of the converged step [s]
 };
 
 struct RunSummary {

@@ -42,13 +42,17 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
   double& step = state.step;
   int& cutbacks = state.cutbacks;
   cutbacks = 0;
-  double attempted_step = step;  // the size of the step attempt before its cutbacks
+  double attempted_step = step;     // the size of the step attempt before its cutbacks
+  std::vector<std::string> causes;  // why the attempts of the step so far failed
   // Secant predictor: the free unknowns move as in the last converged step, scaled to the new step.
   while (t1 - t > eps) {
     // No sliver at the stage end: a step within 1 % of the remainder takes all of it (a sliver of 1e-7 of
     // a step costs a full Newton solve, and under viscous stabilisation its drag stiffness ~ 1 / dt makes
     // it ill-conditioned).
-    if (cutbacks == 0) attempted_step = step;
+    if (cutbacks == 0) {
+      attempted_step = step;
+      causes.clear();
+    }
     if (step >= (1.0 - kSliver) * (t1 - t)) step = t1 - t;
     const Eigen::VectorXd start = problem.unknowns();
     if (state.previous.size() == start.size() && state.previous_step > 0)
@@ -70,6 +74,7 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
         return result;
       }
       ++cutbacks;
+      causes.push_back(report.failure);
       step *= 0.5;
       spdlog::debug("cutback {} at load time {:.6g}: {}; new step {:.3g}", cutbacks, t, report.failure, step);
       continue;
@@ -92,7 +97,7 @@ AdvanceResult advance(SteppedProblem& problem, const StepSolver& solve, double t
       step = std::min(control.nominal_step, step * control.growth);
     const int step_cutbacks = cutbacks;
     cutbacks = 0;
-    if (!on_step({t, converged_step, step_cutbacks, report})) {
+    if (!on_step({t, converged_step, step_cutbacks, report, std::move(causes)})) {
       result.stopped = true;
       result.completed = !(t1 - t > eps);
       return result;

@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 
@@ -32,10 +33,13 @@ struct StepControl {
 };
 
 struct StepResult {
-  double time;
-  double step;
+  double time;   ///< load time at the end of the step
+  double step;   ///< load-time size of the converged step
   int cutbacks;  ///< halvings before this step converged
   NewtonReport newton;
+  /// Why each attempt of the step before the one that converged failed (NewtonReport::failure), in order:
+  /// `cutbacks` entries.
+  std::vector<std::string> cutback_causes = {};
 };
 
 struct AdvanceResult {
