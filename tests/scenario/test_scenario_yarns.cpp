@@ -99,7 +99,8 @@ TEST(ScenarioYarns, FibresAndBodiesAfterTheFilesOwn) {
 yarns:
 )" +
       yarn_text(
-          "    start: [1, 2, 3]\n    direction: [0, 0, 2]\n    clearance: 0.002\n    bending_factor: 0.5\n") +
+          "    start: [1, 2, 3]\n    direction: [0, 0, 2]\n    clearance: 0.002\n    bending_factor: 0.5\n"
+          "    tie: 1e-6\n") +
       R"(conditions:
   - {name: hold, type: clamp, beam: y.r2.f3, at: start}
 )" + kStages +
@@ -146,6 +147,7 @@ yarns:
     for (int end = 0; end < 2; ++end) {
       const BodySpec& body = s.bodies[static_cast<std::size_t>(2 * k + end)];
       EXPECT_EQ(body.penalty, 0.0);  // auto
+      EXPECT_EQ(body.tie, 1e-6);     // the yarn's
       ASSERT_EQ(body.sections.size(), 3u);
       for (int j = 0; j < 3; ++j) {
         EXPECT_EQ(body.sections[j].beam, 1 + 3 * k + j);
@@ -170,6 +172,8 @@ TEST(ScenarioYarns, DefaultsAndLayout) {
   EXPECT_EQ(yarn.roving_packing, model::RovingPacking::hexagonal);
   EXPECT_EQ(yarn.bending_factor, 1.0);
   EXPECT_TRUE(yarn.bodies);
+  EXPECT_EQ(yarn.tie, 0.0);  // auto: the bodies' own default
+  for (const BodySpec& body : s.bodies) EXPECT_EQ(body.tie, 0.0);
   // Along x the section axes are e1 = y (beams' auto director1) and e2 = x cross y = z.
   const model::YarnLayout layout = model::yarn_layout(model::RovingPacking::hexagonal, 3, 3, 0.1005);
   for (int k = 0; k < 3; ++k) {
@@ -186,7 +190,7 @@ TEST(ScenarioYarns, EchoReadsBackAsTheSameScenario) {
       kMaterials + R"(beams:
   - {name: rod, material: pa, radius: 0.1, length: 4, elements: 2}
 yarns:
-)" + yarn_text("    direction: [1, 1, 0]\n") +
+)" + yarn_text("    direction: [1, 1, 0]\n    tie: 1e-6\n") +
       yarn_text("    start: [0, 1, 0]\n    bodies: false\n    roving_packing: ring\n").replace(10, 1, "z") +
       kStages;
   const Scenario original = parse(text);
@@ -213,7 +217,10 @@ yarns:
     EXPECT_EQ(again.yarns[y].roving_packing, original.yarns[y].roving_packing);
     EXPECT_EQ(again.yarns[y].bodies, original.yarns[y].bodies);
     EXPECT_EQ(again.yarns[y].first_beam, original.yarns[y].first_beam);
+    EXPECT_EQ(again.yarns[y].tie, original.yarns[y].tie);
   }
+  EXPECT_NE(echo.find("    tie: 1e-06\n"), std::string::npos) << echo;
+  EXPECT_NE(echo.find("    tie: auto  # 1e-10\n"), std::string::npos) << echo;
 
   // Only yarns: beams: [] reads back.
   const Scenario only = parse(kMaterials + "yarns:\n" + yarn_text() + kStages);
@@ -309,7 +316,9 @@ TEST(ScenarioYarns, BadInputOneLineNamingTheKey) {
        "y.yaml:11: yarns[0].twist: expected one of the keys name | rovings | fibres_per_roving | "
        "fibre_radius | "
        "length | elements | material | start | direction | clearance | roving_packing | yarn_packing | "
-       "bending_factor | bodies, got an unknown key"},
+       "bending_factor | bodies | tie, got an unknown key"},
+      {head + yarn_text("    tie: 0\n") + kStages,
+       "y.yaml:11: yarns[0].tie: expected a number > 0 or auto, got 0"},
       {head + yarn_text().replace(yarn_text().find("fibres_per_roving: 3"), 20, "fibres_per_roving: 400") +
            kStages,
        "y.yaml:6: yarns[0].fibres_per_roving: expected an integer >= 1, with rovings x fibres_per_roving at "

@@ -20,7 +20,7 @@ struct Sampled {
   Vec3 low, high;         ///< bounding box of the points
 };
 
-Sampled sample(const model::Model& model, const Eigen::VectorXd& x, int b, int samples) {
+Sampled sample(const model::Model& model, const Eigen::VectorXd& x, int b, int samples, double end_margin) {
   const beam::Beam& beam = model.beam(b);
   Sampled out;
   out.low = Vec3::Constant(std::numeric_limits<double>::infinity());
@@ -32,10 +32,12 @@ Sampled sample(const model::Model& model, const Eigen::VectorXd& x, int b, int s
     for (int k = 0; k <= samples; ++k) {
       if (k == samples && e + 1 < beam.num_elements()) break;  // the next element's first point
       const double xi = -1.0 + 2.0 * k / samples;
+      const double s = beam.element_length() * (e + 0.5 * (xi + 1.0));
+      if (s < end_margin || s > beam.length() - end_margin) continue;
       const beam::QuadraticShape n = beam::quadratic_shape(xi);
       const Vec3 p = n.value[0] * r0 + n.value[1] * r1 + n.value[2] * r2;
       out.points.push_back(p);
-      out.s.push_back(beam.element_length() * (e + 0.5 * (xi + 1.0)));
+      out.s.push_back(s);
       out.low = out.low.cwiseMin(p);
       out.high = out.high.cwiseMax(p);
     }
@@ -45,12 +47,13 @@ Sampled sample(const model::Model& model, const Eigen::VectorXd& x, int b, int s
 
 }  // namespace
 
-AxisGap smallest_axis_gap(const model::Model& model, const Eigen::VectorXd& x, int samples) {
+AxisGap smallest_axis_gap(const model::Model& model, const Eigen::VectorXd& x, int samples,
+                          double end_margin) {
   AxisGap best;
   best.gap = std::numeric_limits<double>::infinity();
   const int beams = static_cast<int>(model.beams().size());
   std::vector<Sampled> sampled;
-  for (int b = 0; b < beams; ++b) sampled.push_back(sample(model, x, b, std::max(samples, 1)));
+  for (int b = 0; b < beams; ++b) sampled.push_back(sample(model, x, b, std::max(samples, 1), end_margin));
   for (int i = 0; i < beams; ++i)
     for (int j = i + 1; j < beams; ++j) {
       const Sampled &a = sampled[static_cast<std::size_t>(i)], &b = sampled[static_cast<std::size_t>(j)];

@@ -20,8 +20,11 @@ struct AxisGap {
 /// The smallest AxisGap over all pairs of different beams of `model` at state x, the axes sampled at
 /// `samples` points per element (quadratic interpolation of the nodes): the sampling overestimates a
 /// distance d by at most (h / samples)^2 / (8 d). Pairs whose bounding boxes lie farther apart than the
-/// best gap so far are skipped. +infinity gap with fewer than two beams.
-AxisGap smallest_axis_gap(const model::Model& model, const Eigen::VectorXd& x, int samples = 8);
+/// best gap so far are skipped. +infinity gap with fewer than two beams. `end_margin` [mm]: the points within
+/// this arc length of either end of a beam are left out (the end sections a rigid body binds, where a
+/// roving turned with its body may press into its neighbour where no contact element sits).
+AxisGap smallest_axis_gap(const model::Model& model, const Eigen::VectorXd& x, int samples = 8,
+                          double end_margin = 0.0);
 
 /// The helix of a fibre's centreline about the axis through `origin` along `axis` (unit), from the nodes of
 /// beam `beam` whose reference arc length lies in [from, to].

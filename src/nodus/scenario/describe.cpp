@@ -195,6 +195,10 @@ std::string describe(const Scenario& scenario) {
       if (leaf == "clearance")
         line(fmt::format("    clearance: {}  # mm{}", format_number(yarn.gap()),
                          yarn.clearance ? "" : " (default: 0.01 fibre_radius)"));
+      if (leaf == "tie" && yarn.tie <= 0.0) {
+        line("    tie: auto  # 1e-10");
+        return true;
+      }
       return !key.scalar() || leaf == "elements";
     });
   }

@@ -169,6 +169,7 @@ struct YarnSpec {
   YarnPacking yarn_packing = YarnPacking::ring;
   double bending_factor = 1.0;  ///< as beams[].bending_factor, > 0
   bool bodies = true;           ///< also two rigid bodies per roving
+  double tie = 0.0;             ///< bodies[].tie of those bodies, auto if <= 0
   int line = 0;                 ///< line of the yarn in the file (for messages)
   /// Where append_yarn put what it made: Scenario::beams [first_beam, first_beam + m n) and, with `bodies`,
   /// Scenario::bodies [first_body, first_body + 2 m) (roving K: its start body, then its end body).
@@ -232,6 +233,11 @@ inline std::span<const Key<YarnSpec>> YarnSpec::keys() {
       K::flag("yarns[].bodies", &YarnSpec::bodies,
               "also two rigid bodies per roving, NAME.rK.start and NAME.rK.end, binding the start and "
               "end sections of its fibres (penalty auto)"),
+      K::real("yarns[].tie", &YarnSpec::tie, "", "> 0 or auto", ranges::positive,
+              "bodies[].tie of the yarn's bodies: the stiffness, as a fraction of the penalty, of the tie "
+              "that resists each step's rearrangement of a roving's end sections; the twist of a yarn of "
+              "many fibres per roving converges with 1e-6 (docs/yarns.md). auto: 1e-10")
+          .or_auto(),
   };
   return keys;
 }

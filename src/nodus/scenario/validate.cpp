@@ -240,7 +240,7 @@ void check_yarns(const Checker& check, const Scenario& s) {
                                             [](const SectionRef& a, const SectionRef& b) {
                                               return a.beam == b.beam && a.node == b.node;
                                             });
-      if (got.name != want.name || !same_sections)
+      if (got.name != want.name || !same_sections || got.tie != want.tie)
         check.fail(fmt::format("bodies[{}]", body_at(i)),
                    fmt::format("body {} of yarn {} as append_yarn makes it", want.name, yarn.name), got.name);
     }

@@ -49,6 +49,7 @@ std::vector<BodySpec> yarn_bodies(const YarnSpec& yarn, int first_beam) {
       BodySpec body;
       body.name = yarn_body_name(yarn.name, k, at_end);
       body.line = yarn.line;
+      body.tie = yarn.tie;
       for (int j = 0; j < yarn.fibres_per_roving; ++j)
         body.sections.push_back(
             {first_beam + k * yarn.fibres_per_roving + j, at_end ? 2 * yarn.elements : 0});
