@@ -275,6 +275,8 @@ TEST(ScenarioYarns, BuiltInCodeEqualsTheFileAndIsValidated) {
       "in code: yarns[0].first_body: expected the index of its first body in bodies, with room for 6, got 0");
   EXPECT_EQ(error([](Scenario& s) { s.bodies[2].sections[0].node = 1; }),
             "in code: bodies[2]: expected body y.r2.start of yarn y as append_yarn makes it, got y.r2.start");
+  EXPECT_EQ(error([](Scenario& s) { s.bodies[3].tie = 1e-6; }),  // the yarn's tie is auto
+            "in code: bodies[3]: expected body y.r2.end of yarn y as append_yarn makes it, got y.r2.end");
   EXPECT_EQ(
       error([](Scenario& s) { s.yarns.push_back(s.yarns[0]); }),
       "in code: yarns[1].name: expected a name unique among yarns (already used by yarns[0].name), got y");
