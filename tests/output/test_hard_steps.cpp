@@ -75,14 +75,12 @@ TEST(HardSteps, StepsCsvSaysWhyAStepWasCutBack) {
 
   // The changes of regime are counted between evaluations of the same contact elements only: here every
   // element that presses at the end was detected in a state where it already pressed (the rods come into
-  // contact within a Newton solve before a detection), so the counts may stay 0. Frictionless: nothing
-  // sticks or slips.
+  // contact within a Newton solve before a detection), so entering and leaving may stay 0. Frictionless:
+  // nothing sticks or slips.
   int pressing = 0;
   for (const simulation::ContactState& s : sim.contact_states()) pressing += s.normal_reaction > 0.0;
   EXPECT_GT(pressing, 0);
   for (const simulation::StepRecord& r : records) {
-    EXPECT_GE(r.regime_changes.entered, 0);
-    EXPECT_GE(r.regime_changes.left, 0);
     EXPECT_EQ(r.regime_changes.to_slip, 0);
     EXPECT_EQ(r.regime_changes.to_stick, 0);
   }

@@ -7,6 +7,7 @@
 #include <system_error>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "nodus/output/atomic_file.hpp"
 #include "nodus/output/csv.hpp"
@@ -31,12 +32,7 @@ std::string steps_csv_header(const std::vector<std::string>& condition_names,
 }
 
 std::string cutback_causes_field(const std::vector<std::string>& causes) {
-  std::string joined;
-  for (std::size_t k = 0; k < causes.size(); ++k) {
-    if (k > 0) joined += " | ";
-    joined += causes[k];
-  }
-  return csv_field(joined);
+  return csv_field(fmt::format("{}", fmt::join(causes, " | ")));
 }
 
 std::string steps_csv_row(const simulation::StepRecord& record, const std::string& stage_name,
