@@ -178,6 +178,8 @@ TEST(ScenarioKeys, LibraryDefaultsEqualTheScenarioDefaults) {
   EXPECT_EQ(newton.stagnation_iterations, solver.stagnation_iterations);
   EXPECT_EQ(newton.line_search, solver.line_search);
   EXPECT_FALSE(newton.line_search);  // the scenario default (docs/model.md)
+  EXPECT_EQ(newton.backtrack_from, solver.backtrack_from);
+  EXPECT_EQ(newton.backtrack_from, 0);  // off: the full Newton step, as before the key
   const nodus::solver::StepControl stepping;
   EXPECT_EQ(stepping.max_cutbacks, solver.max_cutbacks);
   EXPECT_EQ(stepping.easy_iterations, solver.easy_iterations);

@@ -61,6 +61,7 @@ solver:
   increment_tolerance: 1e-6
   max_cutbacks: 12
   easy_iterations: 4
+  backtrack_from: 0
   krylov_iterations: 20
   gauss_points: 2
   fold_stiffness: 0
@@ -171,8 +172,8 @@ TEST(ScenarioValidate, EveryNumberKeyOutOfRangeGivesTheReadersMessage) {
   checked += check_keys<OutputSettings>("output:", [](Scenario& s) -> OutputSettings& { return s.output; });
   checked +=
       check_keys<ContactSettings>("contact:", [](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 12 + 4 + 14.
-  EXPECT_EQ(checked, 41);
+  // Every number and integer key declared in these structs: 2 + 4 + 4 + 1 + 13 + 4 + 14.
+  EXPECT_EQ(checked, 42);
 }
 
 TEST(ScenarioValidate, ChecksAcrossKeysGiveTheReadersMessage) {
@@ -334,6 +335,14 @@ int check_fingerprint(const std::function<Owner&(Scenario&)>& owner_of) {
   return checked;
 }
 
+TEST(ScenarioFingerprint, KeysAddedLaterAddNoLineAtTheirDefault) {
+  // So that the checkpoints written before solver.backtrack_from existed stay valid.
+  Scenario s = base();
+  EXPECT_EQ(state_fingerprint_text(s, 1).find("backtrack"), std::string::npos);
+  s.solver.backtrack_from = 4;
+  EXPECT_NE(state_fingerprint_text(s, 1).find("solver.backtrack_from = 4\n"), std::string::npos);
+}
+
 TEST(ScenarioFingerprint, EveryValueChangesIt) {
   int checked = 0;
   checked += check_fingerprint<Material>([](Scenario& s) -> Material& { return s.materials[0]; });
@@ -344,9 +353,9 @@ TEST(ScenarioFingerprint, EveryValueChangesIt) {
       [](Scenario& s) -> Keyframe& { return s.stages[0].motions[0].keyframes[0]; });
   checked += check_fingerprint<SolverSettings>([](Scenario& s) -> SolverSettings& { return s.solver; });
   checked += check_fingerprint<ContactSettings>([](Scenario& s) -> ContactSettings& { return s.contact; });
-  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 6, Keyframe 1, SolverSettings 16,
+  // Scalar keys: Material 2, BeamSpec 4, ConditionSpec 2, StageSpec 6, Keyframe 1, SolverSettings 17,
   // ContactSettings 22.
-  EXPECT_EQ(checked, 54);
+  EXPECT_EQ(checked, 55);
 
   // Structural values, and a change in the last digit of a number.
   const Scenario original = base();

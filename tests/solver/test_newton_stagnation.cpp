@@ -1,5 +1,6 @@
 // Newton gives up a solve that makes no progress (NewtonSettings::stagnation_iterations) or too little
-// (NewtonSettings::progress_window) and leaves a converging one alone.
+// (NewtonSettings::progress_window) and leaves a converging one alone; backtracking on |R|
+// (NewtonSettings::backtrack_from) turns a cycling or diverging Newton into a converging one.
 //
 // The problem: f(x) = x^3 - 2 x + 2 = 0. From x = 0 Newton cycles between 0 and 1 for ever (f(0) = 2,
 // f'(0) = -2: x = 1; f(1) = 1, f'(1) = 1: x = 0), |f| alternating 1 and 2; from x = -2 it converges to the
@@ -9,6 +10,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "nodus/solver/linear_solver.hpp"
 #include "nodus/solver/newton.hpp"
@@ -143,6 +145,65 @@ TEST(NewtonProgress, GivesUpACyclingSolveAndStartsAgainAfterAFixedPointUpdate) {
   report = solve_with_progress(updated, 5, [](const NewtonProgress& p) { return p.iteration == 6; });
   EXPECT_FALSE(report.converged);
   EXPECT_EQ(report.iterations, 13);
+}
+
+// f(x) = atan(x): Newton x <- x - (1 + x^2) atan(x) overshoots the root 0 from |x| > 1.3917 and diverges,
+// |x| growing at every iteration (from 2: -3.5357, 13.951, -279.34, ...). |f| has its only minimum at the
+// root, so a step halved until |f| falls converges there.
+class Atan final : public Scalar {
+ public:
+  explicit Atan(double x0) : Scalar(x0, 1e-12, 1e-10) {}
+  double f(double x) const override { return std::atan(x); }
+  double df(double x) const override { return 1.0 / (1.0 + x * x); }
+};
+
+/// Solves `problem` with backtracking from iteration `from` (0: none); `norms` gets |R| after each iteration.
+NewtonReport solve_with_backtracking(NonlinearProblem& problem, int from, std::vector<double>& norms) {
+  const auto linear = make_linear_solver(LinearSolverKind::umfpack);
+  NewtonSettings settings;
+  settings.max_iterations = 25;
+  settings.backtrack_from = from;
+  NewtonSolver newton(*linear, settings);
+  norms.clear();
+  return newton.solve(problem, [&norms](const NewtonProgress& p) {
+    norms.push_back(p.residual);
+    return false;
+  });
+}
+
+TEST(NewtonBacktracking, TurnsADivergingSolveIntoAConvergingOne) {
+  std::vector<double> norms;
+  Atan plain(2.0);
+  EXPECT_FALSE(solve_with_backtracking(plain, 0, norms).converged);
+  Atan from_first(2.0);
+  NewtonReport report = solve_with_backtracking(from_first, 1, norms);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_NEAR(from_first.unknowns()[0], 0.0, 1e-12);
+  for (std::size_t k = 1; k < norms.size(); ++k) EXPECT_LE(norms[k], norms[k - 1]) << "iteration " << k + 1;
+  // From the third iteration on: the first two are Newton's full steps.
+  Atan from_third(2.0);
+  report = solve_with_backtracking(from_third, 3, norms);
+  ASSERT_TRUE(report.converged) << report.failure;
+  EXPECT_NEAR(from_third.unknowns()[0], 0.0, 1e-12);
+  const double x1 = 2.0 - 5.0 * std::atan(2.0);
+  const double x2 = x1 - (1.0 + x1 * x1) * std::atan(x1);
+  ASSERT_GE(norms.size(), 3u);
+  EXPECT_NEAR(norms[0], std::abs(std::atan(x1)), 1e-14);
+  EXPECT_NEAR(norms[1], std::abs(std::atan(x2)), 1e-14);
+  EXPECT_GT(norms[1], norms[0]);  // the full step raised |R|
+  for (std::size_t k = 2; k < norms.size(); ++k) EXPECT_LE(norms[k], norms[k - 1]) << "iteration " << k + 1;
+}
+
+TEST(NewtonBacktracking, LeavesAConvergingSolveAlone) {
+  // From -2 Newton's full steps reduce |f| at every iteration: no step is shortened.
+  std::vector<double> norms;
+  Cubic plain(-2.0), backtracked(-2.0);
+  const NewtonReport a = solve_with_backtracking(plain, 0, norms);
+  const NewtonReport b = solve_with_backtracking(backtracked, 1, norms);
+  ASSERT_TRUE(a.converged) << a.failure;
+  ASSERT_TRUE(b.converged) << b.failure;
+  EXPECT_EQ(a.iterations, b.iterations);
+  EXPECT_EQ(plain.unknowns()[0], backtracked.unknowns()[0]);
 }
 
 }  // namespace

@@ -515,6 +515,9 @@ struct SolverSettings {
   int easy_iterations = ::nodus::solver::StepControl{}.easy_iterations;
   /// Damp the Newton updates by a line search: slower on every verification case so far (docs/model.md).
   bool line_search = ::nodus::solver::NewtonSettings{}.line_search;
+  /// From this iteration of each Newton solve on, halve a full step that does not reduce the residual, >= 0
+  /// (0: never; NewtonSettings::backtrack_from).
+  int backtrack_from = ::nodus::solver::NewtonSettings{}.backtrack_from;
   /// Turn the directors by the rigid part of their Newton increments, or add the increments.
   ::nodus::model::DirectorUpdate director_update = ::nodus::model::DirectorUpdate::rotation;
   /// Keep the tangent's factor across iterations and steps, solving with GMRES on it (NewtonSettings).
@@ -566,6 +569,12 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
       K::flag("solver.line_search", &SolverSettings::line_search,
               "damp Newton updates by a line search on the energy slope (off: faster on every "
               "verification case, docs/model.md; a stage may choose otherwise, stages[].line_search)"),
+      K::whole("solver.backtrack_from", &SolverSettings::backtrack_from, ">= 0", ranges::non_negative,
+               "from this iteration of each Newton solve on (a step with contact runs one a pass of its "
+               "loops; without line search), a full step that does not reduce the residual is halved, up to 6 "
+               "times, and the length with the smallest residual taken: it breaks the cycles of contact "
+               "elements switching between stick and slip, or in and out of contact, in a packed yarn; 0: "
+               "never (docs/model.md)"),
       K::choice(
           "solver.director_update", "rotation | additive",
           [](const SolverSettings& c) { return static_cast<int>(c.director_update); },

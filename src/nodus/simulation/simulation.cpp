@@ -363,6 +363,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   newton_settings.progress_window = scenario_.solver.progress_window;
   newton_settings.progress_ratio = scenario_.solver.progress_ratio;
   newton_settings.line_search = scenario_.solver.line_search;
+  newton_settings.backtrack_from = scenario_.solver.backtrack_from;
   newton_settings.reuse_factor = scenario_.solver.reuse_factor;
   newton_settings.krylov_iterations = scenario_.solver.krylov_iterations;
   newton_settings.cancel = options.cancel;

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,6 +76,29 @@ bool NewtonSolver::solve_linear(const SparseMatrix& tangent, std::uint64_t patte
   if (!factored_) return false;
   x = linear_->solve(rhs);
   return true;
+}
+
+std::optional<double> NewtonSolver::backtrack(NonlinearProblem& problem, const Eigen::VectorXd& u,
+                                              const Eigen::VectorXd& du, double start_norm,
+                                              const Eigen::VectorXd& full_residual) {
+  constexpr double armijo = 1e-4;
+  double best_norm = full_residual.allFinite() ? full_residual.norm() : INFINITY;
+  if (best_norm <= (1.0 - armijo) * start_norm) return std::nullopt;
+  double best_alpha = 1.0;
+  double alpha = 1.0;
+  Eigen::VectorXd residual;
+  for (int k = 0; k < settings_.max_backtracks && !(best_norm <= (1.0 - armijo * best_alpha) * start_norm);
+       ++k) {
+    alpha *= 0.5;
+    problem.set_unknowns(problem.step(u, alpha * du));
+    problem.evaluate(residual, false);
+    const double norm = residual.allFinite() ? residual.norm() : INFINITY;
+    if (norm < best_norm) {
+      best_norm = norm;
+      best_alpha = alpha;
+    }
+  }
+  return best_alpha;
 }
 
 NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpdate& update,
@@ -154,6 +178,15 @@ NewtonReport NewtonSolver::solve(NonlinearProblem& problem, const FixedPointUpda
           problem.evaluate(trial_residual, false);
           s_alpha = du.dot(trial_residual);
         }
+      }
+    }
+    if (settings_.backtrack_from > 0 && it >= settings_.backtrack_from && !settings_.line_search) {
+      const Stopwatch watch(timings_.evaluation);
+      if (const std::optional<double> shorter = backtrack(problem, u, du, residual.norm(), trial_residual)) {
+        alpha = *shorter;
+        next = problem.step(u, alpha * du);
+        problem.set_unknowns(next);
+        problem.evaluate(trial_residual, true);
       }
     }
     if (!trial_residual.allFinite()) {

@@ -2,6 +2,7 @@
 /// Newton-Raphson, optionally with a line search on the slope of the energy along the Newton direction.
 
 #include <functional>
+#include <optional>
 #include <string>
 
 #include "nodus/solver/linear_solver.hpp"
@@ -16,6 +17,15 @@ struct NewtonSettings {
   int max_line_search_iterations = 6;
   /// The step is accepted once |du . R(u + alpha du)| <= slope_ratio |du . R(u)|.
   double slope_ratio = 0.5;
+  /// > 0 (and no line search): from this iteration of each solve on, a full Newton step that does not reduce
+  /// |R| by the Armijo fraction 1e-4 is halved, up to `max_backtracks` times, and the step length with the
+  /// smallest |R| is taken (the full step where none is smaller). A solve whose contact elements switch
+  /// back and forth between stick and slip, or in and out of contact, can cycle with full steps (the same
+  /// few |R| over and over); the shorter steps break the cycle. The first iterations of a solve, whose
+  /// residual a good Newton step may raise (stiff axial terms), take full steps. 0: never
+  /// (docs/model.md, "Backtracking").
+  int backtrack_from = 0;
+  int max_backtracks = 6;  ///< >= 1
   /// Asked after each iteration: true stops the solve there (NewtonReport::cancelled), as Ctrl-C in Python
   /// does. Empty: never.
   std::function<bool()> cancel;
@@ -108,6 +118,13 @@ class NewtonSolver {
   const NewtonTimings& timings() const { return timings_; }
 
  private:
+  /// With the full step's residual not reducing |R| = start_norm enough: the residual at u + alpha du for
+  /// alpha halved up to max_backtracks times, and the alpha of the smallest |R| (1 where none is smaller).
+  /// The problem's unknowns are left at the last alpha tried: the caller sets them. nullopt: the full step
+  /// reduces |R| enough (nothing tried, the unknowns untouched).
+  std::optional<double> backtrack(NonlinearProblem& problem, const Eigen::VectorXd& u,
+                                  const Eigen::VectorXd& du, double start_norm,
+                                  const Eigen::VectorXd& full_residual);
   /// Solves `tangent` x = `rhs`: with GMRES on the lagged factor while it serves, else by a new
   /// factorisation. Returns false if the tangent is singular.
   bool solve_linear(const SparseMatrix& tangent, std::uint64_t pattern_version, const Eigen::VectorXd& rhs,
