@@ -1,6 +1,6 @@
 // Newton gives up a solve that makes no progress (NewtonSettings::stagnation_iterations) or too little
 // (NewtonSettings::progress_window) and leaves a converging one alone; backtracking on |R|
-// (NewtonSettings::backtrack_from) turns a cycling or diverging Newton into a converging one.
+// (NewtonSettings::backtrack_from) turns a diverging Newton into a converging one.
 //
 // The problem: f(x) = x^3 - 2 x + 2 = 0. From x = 0 Newton cycles between 0 and 1 for ever (f(0) = 2,
 // f'(0) = -2: x = 1; f(1) = 1, f'(1) = 1: x = 0), |f| alternating 1 and 2; from x = -2 it converges to the
