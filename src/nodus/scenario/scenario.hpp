@@ -569,12 +569,13 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
       K::flag("solver.line_search", &SolverSettings::line_search,
               "damp Newton updates by a line search on the energy slope (off: faster on every "
               "verification case, docs/model.md; a stage may choose otherwise, stages[].line_search)"),
-      K::whole("solver.backtrack_from", &SolverSettings::backtrack_from, ">= 0", ranges::non_negative,
-               "from this iteration of each Newton solve on (a step with contact runs one a pass of its "
-               "loops; without line search), a full step that does not reduce the residual is halved, up to 6 "
-               "times, and the length with the smallest residual taken: it breaks the cycles of contact "
-               "elements switching between stick and slip, or in and out of contact, in a packed yarn; 0: "
-               "never (docs/model.md)"),
+      K::whole(
+          "solver.backtrack_from", &SolverSettings::backtrack_from, ">= 0", ranges::non_negative,
+          "from this iteration of each Newton solve on (a step with contact runs one a pass of its "
+          "loops; without line search), a full step that does not reduce the residual is halved, up to 6 "
+          "times, and the length with the smallest residual taken: it breaks the cycles of contact "
+          "elements switching between stick and slip, or in and out of contact, in a packed yarn; 0: "
+          "never (docs/model.md)"),
       K::choice(
           "solver.director_update", "rotation | additive",
           [](const SolverSettings& c) { return static_cast<int>(c.director_update); },
