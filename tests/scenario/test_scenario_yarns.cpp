@@ -4,6 +4,8 @@
 // append_yarn equals the file's and passes validate(); bad input gives one line naming the key.
 
 #include <cmath>
+#include <fstream>
+#include <iterator>
 #include <string>
 #include <vector>
 
@@ -12,6 +14,7 @@
 #include "nodus/model/model.hpp"
 #include "nodus/model/yarn_layout.hpp"
 #include "nodus/scenario/scenario.hpp"
+#include "nodus/scenario/section_readers.hpp"
 #include "nodus/scenario/yarn.hpp"
 
 namespace nodus::scenario {
@@ -277,6 +280,18 @@ TEST(ScenarioYarns, BuiltInCodeEqualsTheFileAndIsValidated) {
             "in code: bodies[2]: expected body y.r2.start of yarn y as append_yarn makes it, got y.r2.start");
   EXPECT_EQ(error([](Scenario& s) { s.bodies[3].tie = 1e-6; }),  // the yarn's tie is auto
             "in code: bodies[3]: expected body y.r2.end of yarn y as append_yarn makes it, got y.r2.end");
+  // What the layout cannot use (a clearance whose square overflows hung it), a fibre wider than long, and a
+  // model larger than this machine builds: refused before the layout is made.
+  EXPECT_EQ(error([](Scenario& s) { s.yarns[0].clearance = 1e200; }),
+            "in code: yarns[0].clearance: expected a number >= 0 (mm), got 1e+200");
+  EXPECT_EQ(error([](Scenario& s) { s.yarns[0].fibre_radius = 1e308; }),
+            "in code: yarns[0].fibre_radius: expected a number > 0 (mm), got 1e+308");
+  EXPECT_EQ(
+      error([](Scenario& s) { s.yarns[0].fibre_radius = 5.0; }),
+      "in code: yarns[0].fibre_radius: expected a number > 0 (mm), at most the fibre's length (4), got 5");
+  EXPECT_EQ(error([](Scenario& s) { s.beams[8].elements = static_cast<int>(max_model_elements()); }),
+            "in code: beams[8].elements: expected " + model_elements_expected("beams[].elements", 8 * 5) +
+                ", got " + std::to_string(max_model_elements()));
   EXPECT_EQ(
       error([](Scenario& s) { s.yarns.push_back(s.yarns[0]); }),
       "in code: yarns[1].name: expected a name unique among yarns (already used by yarns[0].name), got y");
@@ -337,6 +352,70 @@ TEST(ScenarioYarns, BadInputOneLineNamingTheKey) {
        "already used at line 4), got y"},
   };
   for (const Case& c : cases) EXPECT_EQ(error_of(c.text), c.expected) << c.text;
+}
+
+// Values the yarn's layout or the model cannot use, found by the scenario fuzzer (tests/fuzz): each refused
+// with its line and key, where before the layout hung (a clearance of 1e308), failed without a line (a fibre
+// radius of 1e308: "roving_pattern: needs ... a finite spacing"), or the first contact detection ran for
+// hours (a length of 6e6 mm: 4e9 test points).
+TEST(ScenarioYarns, WhatTheLayoutCannotUseIsRefusedWithItsLine) {
+  const std::string head = kMaterials + "yarns:\n";
+  const auto with = [&](const std::string& from, const std::string& to, const std::string& tail = kStages) {
+    std::string text = yarn_text();
+    text.replace(text.find(from), from.size(), to);
+    return head + text + tail;
+  };
+  EXPECT_EQ(
+      error_of(with("fibre_radius: 0.05", "fibre_radius: 1e308")),
+      "y.yaml:7: yarns[0].fibre_radius: expected a number > 0 (mm); every number 0 or of magnitude 1e-20 "
+      "to 1e20, got 1e308");
+  EXPECT_EQ(
+      error_of(with("fibre_radius: 0.05", "fibre_radius: 1e-300")),
+      "y.yaml:7: yarns[0].fibre_radius: expected a number > 0 (mm); every number 0 or of magnitude 1e-20 "
+      "to 1e20, got 1e-300");
+  EXPECT_EQ(
+      error_of(head + yarn_text("    clearance: 1e308\n") + kStages),
+      "y.yaml:11: yarns[0].clearance: expected a number >= 0 (mm); every number 0 or of magnitude 1e-20 "
+      "to 1e20, got 1e308");
+  EXPECT_EQ(error_of(head + yarn_text("    start: [0, 1e21, 0]\n") + kStages),
+            "y.yaml:11: yarns[0].start[1]: expected a list of 3 numbers (mm); every number 0 or of magnitude "
+            "1e-20 to 1e20, got 1e21");
+  EXPECT_EQ(
+      error_of(with("fibre_radius: 0.05", "fibre_radius: 5")),
+      "y.yaml:7: yarns[0].fibre_radius: expected a number > 0 (mm), at most the fibre's length (4), got 5");
+  // 9 fibres of as many elements as the machine's memory allows in all.
+  const long long most = max_model_elements() / 9 + 1;
+  EXPECT_EQ(error_of(with("elements: 5", "elements: " + std::to_string(most))),
+            "y.yaml:9: yarns[0].elements: expected " + model_elements_expected("yarns[].elements", 0) +
+                ", got " + std::to_string(most));
+  // Test points every 0.1118 mm (auto: sqrt((3 R)^2 - (2 R)^2)) along 9 fibres 1e6 mm long.
+  const std::string error =
+      error_of(with("length: 4", "length: 1e6", kStages + "contact: {friction: 0.1}\n"));
+  EXPECT_EQ(
+      error.rfind("y.yaml:13: contact.test_point_spacing: expected a number > 0 or auto (mm), with at most "
+                  "",
+                  0),
+      0u)
+      << error;
+  EXPECT_NE(error.find("(their lengths over the spacing, 0.1118 mm here: 8.05e+07 points), got auto"),
+            std::string::npos)
+      << error;
+  // The mutant of the paper's 3x25 yarn.
+  std::ifstream in(std::string(NODUS_SOURCE_DIR) + "/examples/yarn_3x25.yaml");
+  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  text.replace(text.find("fibre_radius: 0.0112"), 20, "fibre_radius: 1e308");
+  const std::string paper = [&] {
+    try {
+      parse_scenario(text, "yarn_3x25.yaml");
+    } catch (const ScenarioError& e) {
+      return std::string(e.what());
+    }
+    return std::string("no error");
+  }();
+  EXPECT_EQ(paper.rfind("yarn_3x25.yaml:", 0), 0u) << paper;
+  EXPECT_NE(paper.find(": yarns[0].fibre_radius: expected a number > 0 (mm); every number 0 or of magnitude"),
+            std::string::npos)
+      << paper;
 }
 
 }  // namespace

@@ -14,6 +14,10 @@ DetectionParameters resolve_parameters(const DetectionParameters& given, const m
   for (int b = 0; b < static_cast<int>(model.beams().size()); ++b)
     if (beams.empty() || std::find(beams.begin(), beams.end(), b) != beams.end())
       radius = std::max(radius, model.beam(b).radius());
+  return resolve_parameters(given, radius);
+}
+
+DetectionParameters resolve_parameters(const DetectionParameters& given, double radius) {
   DetectionParameters p = given;
   if (p.proximity_distance <= 0.0) p.proximity_distance = 3.0 * radius;
   const double contact = 2.0 * radius;

@@ -43,5 +43,7 @@ struct DetectionParameters {
 /// delta_separ <= delta_prox.
 DetectionParameters resolve_parameters(const DetectionParameters& given, const model::Model& model,
                                        const std::vector<int>& beams);
+/// The same for the largest radius `radius` of the contact beams.
+DetectionParameters resolve_parameters(const DetectionParameters& given, double radius);
 
 }  // namespace nodus::contact

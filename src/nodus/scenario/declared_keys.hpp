@@ -26,12 +26,12 @@ bool in_range(const Key<Owner>& key, double value) {
   return key.ok == nullptr || key.ok(value);
 }
 
-/// Whether `value` is admissible for the number or integer `key` in a Scenario: finite and in range; for an
-/// auto key, 0 (auto) too. The one check of a value that the reader and validate() share (the reader reads
-/// the word auto as 0, and an explicit number must be in range).
+/// Whether `value` is admissible for the number or integer `key` in a Scenario: finite, representable() and
+/// in range; for an auto key, 0 (auto) too. The one check of a value that the reader and validate() share
+/// (the reader reads the word auto as 0, and an explicit number must be in range).
 template <class Owner>
 bool admissible(const Key<Owner>& key, double value) {
-  if (!std::isfinite(value)) return false;
+  if (!std::isfinite(value) || !representable(value)) return false;
   if (key.zero_is_auto && value == 0.0) return true;
   return in_range(key, value);
 }

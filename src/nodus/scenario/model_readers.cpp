@@ -1,6 +1,9 @@
 #include "nodus/scenario/section_readers.hpp"
 
+#include "nodus/contact/detection_parameters.hpp"
 #include "nodus/scenario/declared_keys.hpp"
+
+#include <unistd.h>
 
 #include <algorithm>
 #include <cmath>
@@ -24,6 +27,55 @@ std::string_view type_name(ConditionType type) {
       return "bind";
   }
   return "?";
+}
+
+std::string radius_expected(std::string_view pattern, double length) {
+  return fmt::format("{}, at most the fibre's length ({})", expected_text(scenario_key(pattern)),
+                     format_number(length));
+}
+
+long long max_model_elements() {
+  const long pages = sysconf(_SC_PHYS_PAGES), page_size = sysconf(_SC_PAGESIZE);
+  if (pages <= 0 || page_size <= 0) return kMaxElements;
+  const double bytes = static_cast<double>(pages) * static_cast<double>(page_size);
+  return std::min<long long>(kMaxElements, static_cast<long long>(bytes / kBytesPerElement));
+}
+
+std::string model_elements_expected(std::string_view pattern, long long before) {
+  const long long most = max_model_elements();
+  const double gigabytes = static_cast<double>(most) * kBytesPerElement / 1e9;
+  return fmt::format(
+      "{}, with at most {} elements in the model on this machine (about {:.0f} kB an element to "
+      "build, {:.1f} GB of memory here; {} before this one)",
+      expected_text(scenario_key(pattern)), most, kBytesPerElement / 1e3, gigabytes, before);
+}
+
+TestPoints contact_test_points(const Scenario& s) {
+  const ContactSettings& c = s.contact;
+  if (!c.enabled) return {};
+  const auto in_contact = [&c](int b) {
+    return c.beams.empty() || std::find(c.beams.begin(), c.beams.end(), b) != c.beams.end();
+  };
+  double radius = 0.0;
+  for (int b = 0; b < static_cast<int>(s.beams.size()); ++b)
+    if (in_contact(b)) radius = std::max(radius, s.beams[static_cast<std::size_t>(b)].radius);
+  contact::DetectionParameters given;
+  given.proximity_distance = c.proximity_distance;
+  given.test_point_spacing = c.test_point_spacing;
+  given.self_contact = false;  // only the spacing is wanted here: no checks of the other lengths
+  const double spacing = contact::resolve_parameters(given, radius).test_point_spacing;
+  TestPoints points{spacing, 0.0};
+  for (int b = 0; b < static_cast<int>(s.beams.size()); ++b)
+    if (in_contact(b)) points.count += s.beams[static_cast<std::size_t>(b)].length / spacing + 2.0;
+  return points;
+}
+
+std::string test_points_expected(const TestPoints& points) {
+  return fmt::format(
+      "{}, with at most {} test points along the contact beams on this machine (their lengths over the "
+      "spacing, {:.4g} mm here: {:.3g} points)",
+      expected_text(scenario_key("contact.test_point_spacing")), max_test_points(), points.spacing,
+      points.count);
 }
 
 /// The unit vector orthogonal to `direction` (unit) made from the coordinate axis least parallel to it.
@@ -63,6 +115,7 @@ std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const
   const bool yarns = top.get("yarns").has_value();
   const auto list = top.get("beams");
   if (!list && yarns) return beams;
+  long long elements_before = 0;
   for (const Field& item : reader.list(list ? *list : top.require("beams"), !yarns)) {
     const MapView map(reader, item);
     BeamSpec beam;
@@ -82,6 +135,13 @@ std::vector<BeamSpec> read_beams(const Reader& reader, const MapView& top, const
     if (beam.elements > kMaxElements) {
       reader.fail(elements,
                   fmt::format("{}, at most {}", expected_text(scenario_key(elements.pattern)), kMaxElements));
+    }
+    if (elements_before + beam.elements > max_model_elements())
+      reader.fail(elements, model_elements_expected(elements.pattern, elements_before));
+    elements_before += beam.elements;
+    if (beam.radius > beam.length) {
+      const Field radius = map.require("radius");
+      reader.fail(radius, radius_expected(radius.pattern, beam.length));
     }
     if (const auto start = map.get("start")) beam.start = reader.vec(*start);
 

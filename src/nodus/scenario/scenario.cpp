@@ -68,6 +68,12 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_conditions(reader, top, beam_names, scenario.beams, body_names, condition_names, moment_axes);
 
   scenario.contact = read_contact(reader, top, beam_names);
+  if (const TestPoints points = contact_test_points(scenario); points.count > max_test_points()) {
+    const Field contact = *top.get("contact");
+    const auto spacing = MapView(reader, contact).get("test_point_spacing");
+    reader.fail(spacing ? spacing->line : contact.line, "contact.test_point_spacing",
+                test_points_expected(points), spacing ? render(spacing->node) : "auto");
+  }
   LoadValues load_values = initial_load_values(scenario.conditions);
   std::vector<LoadValues> load_values_after;
   NameTable stage_names;

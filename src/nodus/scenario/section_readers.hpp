@@ -78,6 +78,38 @@ inline std::string_view stage_solver_expected(const StageSpec& stage, const Scen
   return {};
 }
 
+/// What a message expects of a fibre's radius (key pattern `pattern`) that exceeds its length: a beam is
+/// slender, its radius at most its length.
+std::string radius_expected(std::string_view pattern, double length);
+
+/// The memory a model takes per element while it is built: `nodus check` of the 3x9 and 3x25 yarns (2,700 and
+/// 7,500 elements) takes 142 and 320 MB, 37 kB more an element; rounded up.
+constexpr double kBytesPerElement = 40e3;
+/// The most elements of all beams and yarn fibres together: this machine's physical memory over
+/// kBytesPerElement, and at most kMaxElements.
+long long max_model_elements();
+/// What a message expects of the `elements` key (pattern `pattern`) that takes the model past
+/// max_model_elements(), `before` elements being there already.
+std::string model_elements_expected(std::string_view pattern, long long before);
+
+/// The test points of contact detection along the contact beams of `s` (contact.beams, or all): the spacing
+/// h_dist as the run resolves it (contact::resolve_parameters: auto from the largest radius) and their
+/// number, sum over the beams of length / h_dist + 2 (contact/proximity_zone.cpp). Zero points without
+/// contact.
+struct TestPoints {
+  double spacing = 0.0;  ///< [mm]
+  double count = 0.0;
+};
+TestPoints contact_test_points(const Scenario& s);
+/// The most test points a model may have: each costs its share of every detection, and a spacing that is
+/// tiny against the beams' lengths (or lengths huge against the radius, with the auto spacing) would stall
+/// the first detection for hours.
+inline long long max_test_points() {
+  return 10 * max_model_elements();
+}
+/// What a message expects of contact.test_point_spacing when contact_test_points() gives too many.
+std::string test_points_expected(const TestPoints& points);
+
 /// The word of the file for a condition type: clamp, motion, rigid, load.
 std::string_view type_name(ConditionType type);
 

@@ -126,6 +126,7 @@ void check_beams(const Checker& check, const Scenario& s) {
   check.names(
       names_of(s.beams), [](std::size_t i) { return fmt::format("beams[{}].name", i); }, "beams[].name",
       "beams");
+  long long elements_before = 0;
   for (std::size_t b = 0; b < s.beams.size(); ++b) {
     const BeamSpec& beam = s.beams[b];
     const std::string at = fmt::format("beams[{}]", b);
@@ -136,6 +137,12 @@ void check_beams(const Checker& check, const Scenario& s) {
                  fmt::format("{}, at most {}", expected_text(scenario_key("beams[].elements")), kMaxElements),
                  std::to_string(beam.elements));
     }
+    if (elements_before + beam.elements > max_model_elements())
+      check.fail(at + ".elements", model_elements_expected("beams[].elements", elements_before),
+                 std::to_string(beam.elements));
+    elements_before += beam.elements;
+    if (beam.radius > beam.length)
+      check.fail(at + ".radius", radius_expected("beams[].radius", beam.length), format_number(beam.radius));
     if (!beam.start.allFinite()) check.fail_key(at + ".start", "beams[].start", format_vec(beam.start));
     if (!(beam.direction.stableNorm() > 0.0) || !beam.direction.allFinite())
       check.fail_key(at + ".direction", "beams[].direction", format_vec(beam.direction));
@@ -202,11 +209,15 @@ void check_yarns(const Checker& check, const Scenario& s) {
                       expected_text(scenario_key("yarns[].fibres_per_roving")), kMaxYarnFibres, yarn.rovings),
           std::to_string(yarn.fibres_per_roving));
     }
+    if (yarn.fibre_radius > yarn.length)
+      check.fail(at + ".fibre_radius", radius_expected("yarns[].fibre_radius", yarn.length),
+                 format_number(yarn.fibre_radius));
     if (!yarn.start.allFinite()) check.fail_key(at + ".start", "yarns[].start", format_vec(yarn.start));
     if (!yarn.direction.allFinite() || std::abs(yarn.direction.norm() - 1.0) > kUnitTolerance)
       check.fail(at + ".direction", "a list of 3 numbers of length 1 (the reader normalises it)",
                  format_vec(yarn.direction));
-    if (yarn.clearance && !(std::isfinite(*yarn.clearance) && *yarn.clearance >= 0.0))
+    if (yarn.clearance &&
+        !(std::isfinite(*yarn.clearance) && representable(*yarn.clearance) && *yarn.clearance >= 0.0))
       check.fail_key(at + ".clearance", "yarns[].clearance", format_number(*yarn.clearance));
 
     const std::vector<BeamSpec> beams = yarn_beams(yarn);
@@ -511,6 +522,9 @@ void check_contact(const Checker& check, const Scenario& s) {
   if (contact.normal_updates == NormalUpdates::linearized &&
       s.solver.linear_solver == LinearSolverKind::cholmod)
     check.fail("contact.normal_updates", kLinearizedNormalsExpected, "linearized");
+  if (const TestPoints points = contact_test_points(s); points.count > max_test_points())
+    check.fail("contact.test_point_spacing", test_points_expected(points),
+               s.contact.test_point_spacing > 0.0 ? format_number(s.contact.test_point_spacing) : "auto");
 }
 
 /// Whether a branch name can be a folder name: letters, digits, '_', '.', '-', not starting with '.'.

@@ -67,6 +67,11 @@ int line_of(const YAML::Node& node, int fallback) {
   return mark.line >= 0 ? mark.line + 1 : fallback;
 }
 
+bool representable(double value) {
+  const double magnitude = std::abs(value);
+  return magnitude == 0.0 || (magnitude >= 1e-20 && magnitude <= 1e20);
+}
+
 std::optional<double> parse_number(const YAML::Node& node) {
   if (!is_plain_scalar(node)) return std::nullopt;
   std::string_view text = node.Scalar();

@@ -23,6 +23,13 @@ namespace nodus::scenario {
 /// Names shown in a "the name of a ... (a | b | ...)" message before it is cut short.
 constexpr std::size_t kMaxNamesShown = 12;
 
+/// Every number of a scenario is 0 or of a magnitude in [1e-20, 1e20], so that the products the model forms
+/// of a few of them (a radius to the fourth power, a spacing squared, a length over a radius) stay normal
+/// doubles: a value beyond (1e308 for a clearance) would build nothing, or hang a yarn's layout.
+bool representable(double value);
+/// What a message expects of a number beyond that range, after the key's own expectation.
+constexpr std::string_view kMagnitudeExpected = "every number 0 or of magnitude 1e-20 to 1e20";
+
 /// A number as the echo and the messages print it (shortest round trip, no "-0").
 std::string format_number(double value);
 /// "[x, y, z]" with format_number.
@@ -63,10 +70,15 @@ class Reader {
   [[noreturn]] void fail(const Field& field) const {
     fail(field, expected_text(scenario_key(field.pattern)));
   }
+  /// Fails with the expectation of the key table and the range of every number (representable()).
+  [[noreturn]] void fail_magnitude(const Field& field) const {
+    fail(field, fmt::format("{}; {}", expected_text(scenario_key(field.pattern)), kMagnitudeExpected));
+  }
 
   template <class Ok>
   double number(const Field& field, Ok ok) const {
     const auto value = parse_number(field.node);
+    if (value && !representable(*value)) fail_magnitude(field);
     if (!value || !ok(*value)) fail(field);
     return *value;
   }
@@ -115,9 +127,11 @@ class Reader {
     Vec3 out;
     for (int i = 0; i < 3; ++i) {
       const auto value = parse_number(field.node[i]);
-      if (!value) {
+      if (!value || !representable(*value)) {
         fail(line_of(field.node[i], field.line), fmt::format("{}[{}]", field.path, i),
-             expected_text(scenario_key(field.pattern)), render(field.node[i]));
+             value ? fmt::format("{}; {}", expected_text(scenario_key(field.pattern)), kMagnitudeExpected)
+                   : expected_text(scenario_key(field.pattern)),
+             render(field.node[i]));
       }
       out[i] = *value;
     }

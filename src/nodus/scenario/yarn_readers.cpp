@@ -35,6 +35,17 @@ void read_yarns(const Reader& reader, const MapView& top, const NameTable& mater
                   fmt::format("{}, with rovings x fibres_per_roving at most {} (rovings: {})",
                               expected_text(scenario_key(fibres.pattern)), kMaxYarnFibres, yarn.rovings));
     }
+    long long elements_before = 0;
+    for (const BeamSpec& beam : scenario.beams) elements_before += beam.elements;
+    if (elements_before + static_cast<long long>(yarn.rovings) * yarn.fibres_per_roving * yarn.elements >
+        max_model_elements()) {
+      const Field elements = map.require("elements");
+      reader.fail(elements, model_elements_expected(elements.pattern, elements_before));
+    }
+    if (yarn.fibre_radius > yarn.length) {
+      const Field radius = map.require("fibre_radius");
+      reader.fail(radius, radius_expected(radius.pattern, yarn.length));
+    }
 
     const Field material = map.require("material");
     const auto material_index = materials.find(reader.name(material));
