@@ -14,7 +14,9 @@
 //
 // Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
-// converged steps are kept in DIR) or was stopped by --stop-after-steps.
+// converged steps are kept in DIR) or was stopped by --stop-after-steps, 128 + the signal's number (143,
+// 130) a run stopped by SIGTERM or SIGINT at the end of a Newton iteration, its last converged state saved
+// as its newest checkpoint (a second signal ends it at once).
 
 //
 // The command line only parses and prints: a run is nodus::run::run (src/nodus/run/run.hpp).
@@ -29,7 +31,10 @@
 #include <thread>
 #include <vector>
 
+#include <signal.h>
 #include <unistd.h>
+
+#include <csignal>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
@@ -132,6 +137,45 @@ int knot(const std::string& path, std::vector<std::string> beams, const std::str
                   d.distance, curves[i].beam.c_str(), d.s1, curves[j].beam.c_str(), d.s2);
     }
   return 0;
+}
+
+/// The signal, SIGTERM or SIGINT, that asked the run to stop; 0: none yet.
+volatile std::sig_atomic_t stop_signal = 0;
+
+/// In a branch process (NODUS_RUN_PARENT, set by the run that started it): the run's process id; else 0.
+pid_t parent_run = 0;
+
+/// The first SIGTERM or SIGINT asks the run to stop at the end of the Newton iteration under way; a second
+/// one ends the process at once, by the signal, unless it comes from the run that started this branch
+/// process: that run forwards its stop to its branch processes, which a Ctrl-C in a terminal or a batch
+/// scheduler's SIGTERM reaches directly too.
+extern "C" void on_stop_signal(int signal, siginfo_t* info, void*) {
+  if (stop_signal == 0) {
+    stop_signal = signal;
+    return;
+  }
+  if (parent_run != 0 && info != nullptr && info->si_pid == parent_run) return;
+  std::signal(signal, SIG_DFL);
+  std::raise(signal);
+}
+
+void catch_stop_signals() {
+  if (const char* parent = std::getenv("NODUS_RUN_PARENT"))
+    parent_run = static_cast<pid_t>(std::atol(parent));
+  struct sigaction action = {};
+  action.sa_sigaction = on_stop_signal;
+  action.sa_flags = SA_SIGINFO | SA_RESTART;
+  sigemptyset(&action.sa_mask);
+  sigaction(SIGTERM, &action, nullptr);
+  sigaction(SIGINT, &action, nullptr);
+}
+
+/// Whether a stop signal has reached this process, or under MPI any rank (every rank asks at the same
+/// Newton iteration, and all stop there).
+bool stop_asked() {
+  double asked = stop_signal != 0 ? 1.0 : 0.0;
+  if (nodus::parallel::size() > 1) nodus::parallel::sum_over_ranks(&asked, 1);
+  return asked > 0.0;
 }
 
 /// Prints a message on stderr, once: on rank 0 under MPI (every rank meets the same bad input).
@@ -253,7 +297,13 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
       if (nodus::parallel::is_root()) std::fputs(nodus::scenario::describe(scenario).c_str(), stdout);
       return 0;
     }
+    catch_stop_signals();
+    request.cancel = stop_asked;
+    request.cancel_cause = [] {
+      return stop_signal == SIGINT ? std::string("SIGINT") : stop_signal == SIGTERM ? "SIGTERM" : "a signal";
+    };
     const nodus::run::Outcome outcome = nodus::run::run(request);
+    if (outcome.cancelled) return 128 + (stop_signal != 0 ? static_cast<int>(stop_signal) : SIGTERM);
     return outcome.converged && !outcome.interrupted ? 0 : kNotConverged;
   } catch (const nodus::scenario::ScenarioError& e) {
     report(e.what());  // every rank read the same input and stops here

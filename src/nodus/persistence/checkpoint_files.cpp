@@ -94,6 +94,10 @@ void CheckpointWriter::on_step(const simulation::Simulation& sim, const simulati
     write_checkpoint(folder_ / kLatestCheckpoint, sim);
 }
 
+void CheckpointWriter::save_now(const simulation::Simulation& sim) {
+  write_checkpoint(folder_ / kLatestCheckpoint, sim);
+}
+
 void CheckpointWriter::on_stage_end(const simulation::Simulation& sim, int stage) {
   write_checkpoint(
       folder_ / checkpoint_file_name(stage, sim.scenario().stages.at(static_cast<std::size_t>(stage)).name),

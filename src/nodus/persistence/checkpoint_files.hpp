@@ -47,6 +47,9 @@ class CheckpointWriter : public simulation::StepObserver {
   void on_start(const simulation::Simulation& sim) override;
   void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
   void on_stage_end(const simulation::Simulation& sim, int stage) override;
+  /// Writes latest.nodus-state now, between the regular ones: the last converged state of a run stopped by a
+  /// signal, from which --resume goes on as from any other.
+  void save_now(const simulation::Simulation& sim);
 
   /// DIR/checkpoints.
   const std::filesystem::path& folder() const { return folder_; }

@@ -50,8 +50,13 @@ fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& 
 
 void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim, bool cancelled) {
   if (cancelled) {
-    spdlog::error("run cancelled at load time {:.6g} s, after {} converged steps; continue it with --resume",
-                  sim.time(), sim.steps());
+    const std::string cause = request.cancel_cause ? request.cancel_cause() : std::string();
+    spdlog::error(
+        "{}stopped by {} at step {}, load time {:.6g} s; its last converged state is saved: continue it with "
+        "--resume",
+        sim.scenario().origin ? fmt::format("branch '{}' ", sim.scenario().origin->name)
+                              : std::string("run "),
+        cause.empty() ? "cancel" : cause, sim.steps(), sim.time());
     return;
   }
   spdlog::error(
@@ -115,6 +120,7 @@ BranchRun run_branch(const Request& request, const scenario::Scenario& main_scen
   if (summary.interrupted) {
     run.interrupted = true;
     run.cancelled = summary.cancelled;
+    if (summary.cancelled && branch_outputs) branch_outputs->save_stopped(branch_sim);
     log_stopped_as_asked(request, branch_sim, summary.cancelled);
     return run;
   }
@@ -216,6 +222,9 @@ bool run_branch_processes(const Request& request, const scenario::Scenario& main
       // A process of its own, not a rank of this one's MPI job (this one may have started MPI as a
       // singleton).
       std::vector<std::string> environment = parallel::environment_for_another_program();
+      // The branch process takes the stop this run forwards to it as the first, not a second, signal.
+      std::erase_if(environment, [](const std::string& e) { return e.starts_with("NODUS_RUN_PARENT="); });
+      environment.push_back(fmt::format("NODUS_RUN_PARENT={}", getpid()));
       std::vector<char*> envp;
       for (std::string& e : environment) envp.push_back(e.data());
       envp.push_back(nullptr);

@@ -120,6 +120,7 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   parallel::barrier();  // rank 0's checkpoints, which the branches start from, are written
   Outcome outcome;
   if (summary.interrupted) {
+    if (summary.cancelled && outputs) outputs->save_stopped(sim);
     log_stopped_as_asked(request, sim, summary.cancelled);
     outcome.interrupted = true;
     outcome.cancelled = summary.cancelled;
@@ -164,7 +165,11 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
       spdlog::info("{} branches to run, {} at a time, each in its own process", todo.size(),
                    std::min(jobs, todo.size()));
     if (!run_branch_processes(request, main_scenario, todo, branch_starts, jobs, runs)) {
-      spdlog::error("run cancelled: the branch processes were stopped; continue the run with --resume");
+      const std::string cause = request.cancel_cause ? request.cancel_cause() : std::string("cancel");
+      spdlog::error(
+          "run stopped by {}: the branch processes saved their last converged states; continue the "
+          "run with --resume",
+          cause);
       outcome.converged = false;
       outcome.interrupted = outcome.cancelled = true;
       return outcome;

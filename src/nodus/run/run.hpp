@@ -37,10 +37,13 @@ struct Request {
   /// NAME`). Empty: branches run in this process, one at a time, whatever `jobs` says (what a library caller
   /// such as Python gets by default; the results are the same).
   std::filesystem::path branch_executable;
-  /// Asked after every Newton iteration, every step and while branch processes run: true stops the run as
-  /// if it were killed there (the checkpoints let it resume; branch processes are terminated). The Python
-  /// module's Ctrl-C. Empty: never.
+  /// Asked after every Newton iteration, every step and while branch processes run: true stops the run at
+  /// its last converged state, which is saved as its newest checkpoint (--resume goes on from it; branch
+  /// processes are sent SIGTERM and do the same). SIGTERM and SIGINT for `nodus run`, Ctrl-C in Python.
+  /// Empty: never.
   std::function<bool()> cancel;
+  /// What stopped the run when `cancel` said so, for the message ("SIGTERM"); empty: "cancel".
+  std::function<std::string()> cancel_cause;
 };
 
 /// How a run ended.

@@ -34,6 +34,9 @@ class RunOutputs {
 
   const std::vector<simulation::StepObserver*>& observers() const { return observers_; }
   const output::SummaryWriter& summary() const { return summary_; }
+  /// Saves the last converged state of a run stopped between its checkpoints (Request::cancel) as its
+  /// newest checkpoint.
+  void save_stopped(const simulation::Simulation& sim) { checkpoints_.save_now(sim); }
 
  private:
   output::StepsCsvWriter steps_;

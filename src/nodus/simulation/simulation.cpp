@@ -600,7 +600,9 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
       break;
     }
   }
-  update_counters();
+  // A run cancelled inside a step is back at its last converged state, counters included: the work of the
+  // abandoned attempt is done again by the run that goes on from there (a resumed one counts it then).
+  if (!summary.cancelled) update_counters();
   summary.converged = summary.failure.empty();
   summary.wall_seconds = counters_.wall_seconds;
   summary.detection_seconds = counters_.detection_seconds;
