@@ -14,9 +14,10 @@
 //
 // Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
-// converged steps are kept in DIR) or was stopped by --stop-after-steps, 128 + the signal's number (143,
-// 130) a run stopped by SIGTERM or SIGINT at the end of a Newton iteration, its last converged state saved
-// as its newest checkpoint (a second signal ends it at once).
+// converged steps are kept in DIR) or was stopped by --stop-after-steps, 4 an output file could not be
+// written (the message names it and the system's reason; the run resumes once that is removed), 128 + the
+// signal's number (143, 130) a run stopped by SIGTERM or SIGINT at the end of a Newton iteration, its last
+// converged state saved as its newest checkpoint (a second signal ends it at once).
 
 //
 // The command line only parses and prints: a run is nodus::run::run (src/nodus/run/run.hpp).
@@ -41,9 +42,11 @@
 #include <CLI/CLI.hpp>
 
 #include "nodus/analysis/knot.hpp"
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/final_nodes_table.hpp"
 #include "nodus/output/logging.hpp"
 #include "nodus/parallel/mpi_session.hpp"
+#include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/run.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
@@ -53,6 +56,7 @@ namespace {
 
 constexpr int kBadInput = 2;
 constexpr int kNotConverged = 3;
+constexpr int kWriteFailed = 4;
 
 /// OpenMP threads that wait for work by spinning (libgomp's default, for nodus's parallel regions and the
 /// OpenMP OpenBLAS under CHOLMOD alike) keep their cores busy between regions; when another process wants one
@@ -308,6 +312,15 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
   } catch (const nodus::scenario::ScenarioError& e) {
     report(e.what());  // every rank read the same input and stops here
     return kBadInput;
+  } catch (const nodus::output::WriteError& e) {
+    // Rank 0 alone writes: the others would wait for it for ever.
+    const bool resumable = !request.out.empty() &&
+                           nodus::persistence::newest_checkpoint(request.out / "checkpoints").has_value();
+    std::fprintf(stderr, "nodus: %s; the run stopped there: %s\n", e.what(),
+                 resumable ? "once the cause is removed, continue it with --resume from its newest checkpoint"
+                           : "it has no checkpoint yet: once the cause is removed, run it again");
+    if (nodus::parallel::size() > 1) nodus::parallel::abort_all(kWriteFailed);
+    return kWriteFailed;
   } catch (const std::exception& e) {
     // This rank alone may have failed (a disk full on rank 0): the others would wait for it for ever.
     std::fprintf(

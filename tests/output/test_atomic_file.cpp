@@ -1,10 +1,13 @@
 // Whole-file writes through a temporary file and a rename: content, replacement, no leftovers, and errors
-// that name the path.
+// that name the path and the system's reason.
 
 #include <gtest/gtest.h>
 
+#include <unistd.h>
+
 #include <filesystem>
 #include <stdexcept>
+#include <string>
 
 #include "nodus/output/atomic_file.hpp"
 #include "output_test_support.hpp"
@@ -52,6 +55,23 @@ TEST(AtomicFile, ErrorNamesThePath) {
   } catch (const std::runtime_error& e) {
     EXPECT_NE(std::string(e.what()).find(path.string()), std::string::npos) << e.what();
   }
+}
+
+// A full disk: the temporary file is made a link to /dev/full, where every write fails with ENOSPC. The error
+// names the target and the system's reason, and the target keeps its content.
+TEST(AtomicFile, AFullDiskIsSaidAndTheTargetKept) {
+  ScratchDir dir;
+  const auto path = dir.path() / "a.txt";
+  write_file_atomically(path, "kept");
+  std::filesystem::create_symlink("/dev/full", temporary_path(path, static_cast<long>(::getpid())));
+  try {
+    write_file_atomically(path, "lost");
+    FAIL() << "no exception";
+  } catch (const WriteError& e) {
+    EXPECT_EQ(std::string(e.what()), "cannot write '" + path.string() + "': No space left on device");
+  }
+  EXPECT_EQ(read_text(path), "kept");
+  EXPECT_EQ(count_files(dir.path()), 1);  // the temporary file (here the link) removed
 }
 
 }  // namespace

@@ -1,10 +1,13 @@
 #include "nodus/output/atomic_file.hpp"
 
-#include <regex>
-#include <stdexcept>
-#include <system_error>
-
+#include <fcntl.h>
 #include <unistd.h>
+
+#include <cerrno>
+#include <cstring>
+#include <regex>
+#include <string>
+#include <system_error>
 
 namespace nodus::output {
 
@@ -19,31 +22,38 @@ bool is_temporary_file_name(std::string_view file_name) {
   return std::regex_match(file_name.begin(), file_name.end(), pattern);
 }
 
+void throw_write_error(std::string_view what, const std::filesystem::path& path, int error) {
+  throw WriteError("cannot " + std::string(what) + " '" + path.string() + "': " + std::strerror(error));
+}
+
 AtomicFile::AtomicFile(std::filesystem::path path)
     : path_(std::move(path)), temp_(temporary_path(path_, static_cast<long>(::getpid()))) {
-  out_.open(temp_, std::ios::binary | std::ios::trunc);
-  if (!out_)
-    throw std::runtime_error("cannot open '" + temp_.string() + "' for writing (for '" + path_.string() +
-                             "')");
+  fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
+  if (fd_ < 0) throw_write_error("create", temp_, errno);
 }
 
 AtomicFile::~AtomicFile() {
   if (committed_) return;
-  out_.close();
+  if (fd_ >= 0) ::close(fd_);
   std::error_code ignored;
   std::filesystem::remove(temp_, ignored);
 }
 
 void AtomicFile::commit() {
-  out_.flush();
-  const bool ok = static_cast<bool>(out_);
-  out_.close();
-  if (!ok || out_.fail()) throw std::runtime_error("error while writing '" + temp_.string() + "'");
+  const std::string content = std::move(buffer_).str();
+  for (std::size_t done = 0; done < content.size();) {
+    const ssize_t n = ::write(fd_, content.data() + done, content.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw_write_error("write", path_, errno);
+    done += static_cast<std::size_t>(n);
+  }
+  // Some file systems (NFS) report a full disk only when the file is closed.
+  const int closed = ::close(fd_);
+  fd_ = -1;
+  if (closed != 0) throw_write_error("write", path_, errno);
   std::error_code error;
   std::filesystem::rename(temp_, path_, error);
-  if (error)
-    throw std::runtime_error("cannot rename '" + temp_.string() + "' to '" + path_.string() +
-                             "': " + error.message());
+  if (error) throw_write_error("rename '" + temp_.string() + "' onto", path_, error.value());
   committed_ = true;
 }
 

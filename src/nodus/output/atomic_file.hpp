@@ -4,14 +4,26 @@
 /// POSIX file systems).
 
 #include <filesystem>
-#include <fstream>
+#include <sstream>
+#include <stdexcept>
 #include <string_view>
 
 namespace nodus::output {
 
-/// A file being written: stream into `stream()`, then `commit()` renames the temporary file onto the target.
-/// Destroyed without commit (an exception on the way), it removes the temporary file and leaves the target as
-/// it was. Errors throw std::runtime_error naming the path.
+/// A file of a run's output that could not be written: the message names the file and the system's reason
+/// ("No space left on device", "Permission denied", "Read-only file system"). `nodus run` exits with status 4
+/// for it; what was written before stays as it was, so that the run resumes once the cause is removed.
+class WriteError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+/// Throws WriteError "cannot WHAT 'PATH': REASON", REASON from errno `error`.
+[[noreturn]] void throw_write_error(std::string_view what, const std::filesystem::path& path, int error);
+
+/// A file being written: stream into `stream()` (held in memory), then `commit()` writes it to the temporary
+/// file and renames that onto the target. Destroyed without commit (an exception on the way), it removes the
+/// temporary file and leaves the target as it was. Errors throw WriteError naming the path and the reason.
 class AtomicFile {
  public:
   explicit AtomicFile(std::filesystem::path path);
@@ -19,15 +31,16 @@ class AtomicFile {
   AtomicFile(const AtomicFile&) = delete;
   AtomicFile& operator=(const AtomicFile&) = delete;
 
-  std::ostream& stream() { return out_; }
+  std::ostream& stream() { return buffer_; }
   const std::filesystem::path& path() const { return path_; }
-  /// Flushes, closes and renames onto the target. Throws if any write failed.
+  /// Writes the content, closes and renames onto the target. Throws WriteError if any of it failed.
   void commit();
 
  private:
   std::filesystem::path path_;
   std::filesystem::path temp_;
-  std::ofstream out_;
+  std::ostringstream buffer_;
+  int fd_ = -1;  ///< the temporary file, open from the constructor to commit()
   bool committed_ = false;
 };
 

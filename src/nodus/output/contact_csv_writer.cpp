@@ -7,6 +7,7 @@
 
 #include <fmt/format.h>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/contact_table.hpp"
 
 namespace nodus::output {
@@ -15,7 +16,7 @@ namespace {
 void create_folder(const std::filesystem::path& dir) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", dir, error.value());
 }
 
 void remove_file(const std::filesystem::path& path) {

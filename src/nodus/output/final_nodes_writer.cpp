@@ -3,6 +3,7 @@
 #include <stdexcept>
 #include <system_error>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/final_nodes_table.hpp"
 
 namespace nodus::output {
@@ -14,7 +15,7 @@ void FinalNodesWriter::on_finish(const simulation::Simulation& sim,
                                  const simulation::RunSummary& /*summary*/) {
   std::error_code error;
   std::filesystem::create_directories(dir_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", dir_, error.value());
   write_final_nodes(path_, sim.model(), sim.state());
 }
 

@@ -6,6 +6,7 @@
 #include <system_error>
 #include <vector>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/contact_table.hpp"
 #include "nodus/output/final_nodes_table.hpp"
@@ -41,7 +42,7 @@ void StageEndWriter::on_start(const simulation::Simulation& sim) {
 void StageEndWriter::on_stage_end(const simulation::Simulation& sim, int stage) {
   std::error_code error;
   std::filesystem::create_directories(folder_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + folder_.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", folder_, error.value());
   const std::string base = stem(stage, sim.scenario().stages.at(static_cast<std::size_t>(stage)).name);
   write_final_nodes(folder_ / (base + "_nodes.csv"), sim.model(), sim.state());
   if (const contact::ContactGeometry* geometry = sim.contact())

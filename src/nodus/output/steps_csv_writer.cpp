@@ -1,5 +1,6 @@
 #include "nodus/output/steps_csv_writer.hpp"
 
+#include <cerrno>
 #include <charconv>
 #include <fstream>
 #include <sstream>
@@ -109,12 +110,12 @@ std::string CsvRowFile::open(const std::string& header, bool resume, int last_st
   std::error_code error;
   const std::filesystem::path dir = path_.parent_path();
   std::filesystem::create_directories(dir, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", dir, error.value());
   if (file_) std::fclose(file_);
   file_ = nullptr;
   if (!resume) {
     file_ = std::fopen(path_.c_str(), "w");
-    if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for writing");
+    if (!file_) throw_write_error("open", path_, errno);
     write_line(header);
     return header + "\n";
   }
@@ -128,20 +129,21 @@ std::string CsvRowFile::open(const std::string& header, bool resume, int last_st
   }
   write_file_atomically(path_, kept);
   file_ = std::fopen(path_.c_str(), "a");
-  if (!file_) throw std::runtime_error("cannot open '" + path_.string() + "' for appending");
+  if (!file_) throw_write_error("open for appending", path_, errno);
   return kept;
 }
 
 void CsvRowFile::write_line(const std::string& line) {
   if (!file_) throw std::runtime_error("'" + path_.string() + "' is not open (on_start not called)");
   if (std::fputs(line.c_str(), file_) < 0 || std::fputc('\n', file_) == EOF || std::fflush(file_) != 0)
-    throw std::runtime_error("error while writing '" + path_.string() + "'");
+    throw_write_error("write", path_, errno);
 }
 
 void CsvRowFile::close() {
   if (file_ && std::fclose(file_) != 0) {
+    const int error = errno;
     file_ = nullptr;
-    throw std::runtime_error("error while closing '" + path_.string() + "'");
+    throw_write_error("write", path_, error);
   }
   file_ = nullptr;
 }

@@ -123,7 +123,7 @@ void SummaryWriter::on_finish(const simulation::Simulation& sim, const simulatio
   if (!write_at_finish_) return;
   std::error_code error;
   std::filesystem::create_directories(dir_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + dir_.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", dir_, error.value());
   write_summary(path_, *data_);
 }
 

@@ -10,6 +10,7 @@
 
 #include <fmt/format.h>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/contact_vtk.hpp"
 
 namespace nodus::output {
@@ -51,7 +52,7 @@ void VtkSeries::begin(bool contact) {
   const std::filesystem::path vtk = dir_ / "vtk";
   std::error_code error;
   std::filesystem::create_directories(vtk, error);
-  if (error) throw std::runtime_error("cannot create folder '" + vtk.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", vtk, error.value());
   const std::regex series_file(R"((step|contact)_[0-9]{6,}\.vtp)");
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::directory_iterator(vtk, error))
@@ -109,7 +110,7 @@ void VtkSeries::resume(int last_step, bool contact) {
   const std::filesystem::path vtk = dir_ / "vtk";
   std::error_code error;
   std::filesystem::create_directories(vtk, error);
-  if (error) throw std::runtime_error("cannot create folder '" + vtk.string() + "': " + error.message());
+  if (error) throw_write_error("create folder", vtk, error.value());
   const std::regex series_file(R"((step|contact)_([0-9]{6,})\.vtp)");
   std::vector<std::filesystem::path> stale;
   for (const auto& entry : std::filesystem::directory_iterator(vtk, error)) {

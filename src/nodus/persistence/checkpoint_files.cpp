@@ -85,7 +85,7 @@ CheckpointWriter::CheckpointWriter(std::filesystem::path dir, int every)
 void CheckpointWriter::on_start(const simulation::Simulation& sim) {
   std::error_code error;
   std::filesystem::create_directories(folder_, error);
-  if (error) throw std::runtime_error("cannot create folder '" + folder_.string() + "': " + error.message());
+  if (error) output::throw_write_error("create folder", folder_, error.value());
   if (sim.start_kind() != simulation::StartKind::resumed) remove_checkpoints(folder_);
 }
 
