@@ -314,8 +314,12 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
     return kBadInput;
   } catch (const nodus::output::WriteError& e) {
     // Rank 0 alone writes: the others would wait for it for ever.
-    const bool resumable = !request.out.empty() &&
-                           nodus::persistence::newest_checkpoint(request.out / "checkpoints").has_value();
+    bool resumable = false;
+    try {
+      resumable = !request.out.empty() &&
+                  nodus::persistence::newest_checkpoint(request.out / "checkpoints").has_value();
+    } catch (const std::exception&) {  // a damaged one: the message then says to run again
+    }
     std::fprintf(stderr, "nodus: %s; the run stopped there: %s\n", e.what(),
                  resumable ? "once the cause is removed, continue it with --resume from its newest checkpoint"
                            : "it has no checkpoint yet: once the cause is removed, run it again");

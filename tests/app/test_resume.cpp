@@ -439,3 +439,63 @@ TEST(Resume, BadInputIsRefusedAndChangesNothing) {
 }
 
 }  // namespace
+
+namespace {
+
+/// Damages the file at `path` in one of three ways: a byte flipped in the middle, the second half cut off,
+/// the second half zeroed.
+void damage(const fs::path& path, int how) {
+  std::string bytes = read(path);
+  const std::size_t half = bytes.size() / 2;
+  if (how == 0) bytes[half] = static_cast<char>(bytes[half] ^ 0xff);
+  if (how == 1) bytes.resize(half);
+  if (how == 2) std::fill(bytes.begin() + static_cast<std::ptrdiff_t>(half), bytes.end(), '\0');
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+}  // namespace
+
+// A damaged newest checkpoint is passed over with a warning naming it: --resume goes on from the newest
+// intact one (here the end of press, step 3, the damaged one being at step 6) to the files of the run never
+// stopped. With every checkpoint damaged, --resume refuses in one line that names them, and changes nothing.
+TEST(Resume, FromTheNewestIntactCheckpoint) {
+  const fs::path scenario =
+      write("drag_damaged.yaml",
+            replaced(kDrag, "  contact_csv: true\n", "  contact_csv: true\n  checkpoint_every: 2\n"));
+  const fs::path reference = reference_run(scenario, "drag_damaged");
+  for (const int how : {0, 1, 2}) {
+    SCOPED_TRACE("damage " + std::to_string(how));
+    const fs::path out = scratch() / ("drag_damaged_" + std::to_string(how));
+    fs::remove_all(out);
+    const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+    ASSERT_EQ(run_nodus(run + " --stop-after-steps 6").status, 3);
+    damage(out / "checkpoints" / "latest.nodus-state", how);
+    const Result r = run_nodus(run + " --resume");
+    EXPECT_EQ(r.status, 0) << r.err;
+    EXPECT_NE(r.err.find((out / "checkpoints" / "latest.nodus-state").string() + ": damaged (expected "),
+              std::string::npos)
+        << r.err;
+    EXPECT_NE(r.err.find("resuming from " + (out / "checkpoints" / "000_press.nodus-state").string() +
+                         " (step 3, "),
+              std::string::npos)
+        << r.err;
+    expect_same_results(reference, out);
+  }
+
+  const fs::path out = scratch() / "drag_all_damaged";
+  fs::remove_all(out);
+  const std::string run = "run " + scenario.string() + " --out " + out.string() + " -q";
+  ASSERT_EQ(run_nodus(run + " --stop-after-steps 6").status, 3);
+  damage(out / "checkpoints" / "latest.nodus-state", 0);
+  damage(out / "checkpoints" / "000_press.nodus-state", 1);
+  const auto before = results(out);
+  const Result r = run_nodus(run + " --resume");
+  EXPECT_EQ(r.status, 2) << r.err;
+  EXPECT_NE(
+      r.err.find("nodus: " + (out / "checkpoints").string() +
+                 ": --resume: expected an intact checkpoint, got only damaged ones (000_press.nodus-state, "
+                 "latest.nodus-state): nothing to resume from"),
+      std::string::npos)
+      << r.err;
+  EXPECT_TRUE(results(out) == before) << "the output folder changed";
+}

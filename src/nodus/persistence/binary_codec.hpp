@@ -14,9 +14,14 @@
 
 namespace nodus::persistence {
 
-/// Throws scenario::ScenarioError "PATH: checkpoint: expected EXPECTED, got GOT" (a damaged or foreign file).
+/// Throws scenario::ScenarioError "PATH: checkpoint: expected EXPECTED, got GOT" (a foreign file: another
+/// format version, another scenario).
 [[noreturn]] void bad_file(const std::filesystem::path& path, std::string_view expected,
                            std::string_view got);
+/// Throws DamagedFile (a scenario::ScenarioError) with bad_file's message: a file cut short, changed after
+/// it was written (its checksum), or not a state file at all.
+[[noreturn]] void damaged_file(const std::filesystem::path& path, std::string_view expected,
+                               std::string_view got);
 
 /// Appends values in the file's byte order.
 class Encoder {
@@ -102,7 +107,7 @@ class Decoder {
   }
   std::size_t position() const { return pos_; }
   [[noreturn]] void damaged() const {
-    bad_file(path_, "a complete checkpoint", "a damaged or truncated file");
+    damaged_file(path_, "a complete checkpoint", "a damaged or truncated file");
   }
 
  private:

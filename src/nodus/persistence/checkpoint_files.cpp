@@ -5,8 +5,11 @@
 #include <fstream>
 #include <sstream>
 #include <system_error>
+#include <tuple>
+#include <vector>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "nodus/output/atomic_file.hpp"
 #include "nodus/persistence/binary_codec.hpp"
@@ -61,6 +64,50 @@ std::optional<CheckpointInfo> newest_checkpoint(const std::filesystem::path& fol
   }
   if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
   return newest;
+}
+
+std::optional<CheckpointInfo> newest_intact_checkpoint(const std::filesystem::path& folder,
+                                                       const scenario::Scenario& scenario) {
+  std::error_code error;
+  if (!std::filesystem::is_directory(folder, error)) return std::nullopt;
+  std::vector<CheckpointInfo> readable;
+  std::vector<std::string> damaged;  // "NAME (what is wrong)"
+  const auto pass_over = [&damaged](const std::filesystem::path& path, const DamagedFile& e) {
+    const std::string what = e.what();
+    const std::string reason = what.substr(what.find(": checkpoint: ") + 14);
+    spdlog::warn("{}: damaged ({}), passed over", path.string(), reason);
+    damaged.push_back(path.filename().string());
+  };
+  for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
+    if (!entry.is_regular_file() || entry.path().extension() != kCheckpointExtension) continue;
+    try {
+      readable.push_back(checkpoint_info(entry.path()));
+    } catch (const DamagedFile& e) {
+      pass_over(entry.path(), e);
+    }
+  }
+  if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
+  const auto key = [](const CheckpointInfo& i) {
+    return std::tuple(i.steps, i.path.filename() != kLatestCheckpoint, i.path.filename().string());
+  };
+  std::sort(readable.begin(), readable.end(),
+            [&key](const CheckpointInfo& a, const CheckpointInfo& b) { return key(a) > key(b); });
+  for (const CheckpointInfo& info : readable) {
+    try {
+      read_checkpoint(info.path, scenario);
+      return info;
+    } catch (const DamagedFile& e) {
+      pass_over(info.path, e);
+    }
+  }
+  if (damaged.empty()) return std::nullopt;
+  std::sort(damaged.begin(), damaged.end());
+  std::string names;
+  for (const std::string& name : damaged) names += (names.empty() ? "" : ", ") + name;
+  throw scenario::ScenarioError(fmt::format(
+      "{}: --resume: expected an intact checkpoint, got only damaged ones ({}): nothing to resume from (run "
+      "without --resume to start the run again)",
+      folder.string(), names));
 }
 
 void remove_checkpoints(const std::filesystem::path& folder) {

@@ -32,9 +32,24 @@ simulation::SimulationState read_checkpoint(const std::filesystem::path& path,
 /// this format version.
 CheckpointInfo checkpoint_info(const std::filesystem::path& path);
 
+/// A checkpoint that cannot be read back: cut short, changed after it was written (its checksum), or not a
+/// state file at all (a foreign one, of another format version or scenario, is a plain ScenarioError).
+class DamagedFile : public scenario::ScenarioError {
+ public:
+  using scenario::ScenarioError::ScenarioError;
+};
+
 /// The checkpoint of `folder` (*.nodus-state files) with the most steps, a stage-end one before `latest` at
-/// equal steps; none if the folder has none (or does not exist).
+/// equal steps; none if the folder has none (or does not exist). Throws DamagedFile if one's header is
+/// damaged.
 std::optional<CheckpointInfo> newest_checkpoint(const std::filesystem::path& folder);
+
+/// The newest checkpoint of `folder`, in the order of newest_checkpoint, that reads back whole as a state of
+/// `scenario`: a damaged one (DamagedFile) is passed over with a warning that names it and what is wrong, and
+/// the next newest tried. None if the folder has none. Throws scenario::ScenarioError if there are
+/// checkpoints but every one is damaged (naming them), or if the first intact one is of another scenario.
+std::optional<CheckpointInfo> newest_intact_checkpoint(const std::filesystem::path& folder,
+                                                       const scenario::Scenario& scenario);
 
 /// Saves the run's checkpoints into DIR/checkpoints: NNN_<stage>.nodus-state at the end of each stage and,
 /// every `every` converged steps (0: never) unless the step ends a stage, latest.nodus-state. At the start of

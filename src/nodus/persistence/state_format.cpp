@@ -334,7 +334,7 @@ CheckpointInfo read_header(Decoder& d, const std::filesystem::path& path, std::u
     magic.push_back(static_cast<char>(c));
   }
   if (magic != kCheckpointMagic)
-    bad_file(path, "a nodus state file (starting with NODUS-STATE)", "a file of another kind");
+    damaged_file(path, "a nodus state file (starting with NODUS-STATE)", "a file of another kind");
   const std::uint32_t version = d.u32();
   if (version != kCheckpointVersion)
     bad_file(path, fmt::format("format version {}", kCheckpointVersion), fmt::format("version {}", version));

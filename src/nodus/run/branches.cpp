@@ -154,7 +154,9 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   BranchStart start;
   if (request.resume) {
     start.finished = fs::exists(dir / "summary.json");
-    if (!start.finished) start.own = persistence::newest_checkpoint(dir / "checkpoints");
+    if (!start.finished)
+      start.own = persistence::newest_intact_checkpoint(dir / "checkpoints",
+                                                        scenario::branch_scenario(main_scenario, b));
   } else if (parallel::is_root()) {
     fs::remove(dir / "summary.json");
     persistence::remove_checkpoints(dir / "checkpoints");

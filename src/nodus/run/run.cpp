@@ -62,7 +62,7 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
       complete.already_complete = true;
       return complete;
     }
-    const auto newest = persistence::newest_checkpoint(out / "checkpoints");
+    const auto newest = persistence::newest_intact_checkpoint(out / "checkpoints", main_scenario);
     if (!newest)
       throw scenario::ScenarioError(fmt::format(
           "{}: --resume: expected a checkpoint (*.nodus-state) in {}, got none: nothing to resume "
@@ -76,7 +76,8 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
       BranchStart& start = branch_starts[b];
       start.finished = fs::exists(branch_dir(out, branch) / "summary.json");
       if (start.finished) continue;
-      start.own = persistence::newest_checkpoint(branch_dir(out, branch) / "checkpoints");
+      start.own =
+          persistence::newest_intact_checkpoint(branch_dir(out, branch) / "checkpoints", branch_scenario);
       const fs::path from = start.own ? start.own->path : branch_start_checkpoint(out, main_scenario, branch);
       if (fs::exists(from)) persistence::read_checkpoint(from, branch_scenario);  // checks it
     }
