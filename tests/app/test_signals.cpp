@@ -177,3 +177,43 @@ TEST(Signals, BranchProcessesStopWithTheirRunAndResume) {
 }
 
 }  // namespace
+
+namespace {
+
+// One run at a time in a folder: a second run into it, of the same scenario or another, resumed or not, is
+// refused with status 2 and one line naming the folder and the process writing into it, and changes nothing;
+// once the first is killed (kill -9: the kernel releases its lock), --resume goes on to the files of the run
+// never stopped.
+TEST(OneRunAtATime, ASecondRunIntoTheFolderIsRefused) {
+  const fs::path scenario = write("long_drag_locked.yaml", long_drag());
+  const fs::path other = write("other_locked.yaml", nodus::testing::kDrag);
+  const fs::path reference = scratch() / "long_drag_locked_ref";
+  fs::remove_all(reference);
+  ASSERT_EQ(run_nodus("run " + scenario.string() + " --out " + reference.string() + " -q").status, 0);
+
+  const fs::path out = scratch() / "long_drag_locked";
+  fs::remove_all(out);
+  const pid_t first = start_nodus(scenario, out, scratch() / "long_drag_locked.err");
+  ASSERT_TRUE(wait_for_rows(out / "steps.csv", 5));
+  const std::string expected =
+      "nodus: " + out.string() +
+      ": --out: expected a folder no other run is writing into, got one that process " +
+      std::to_string(first) +
+      " is writing into (let it end, stop it, or choose another "
+      "folder)\n";
+  for (const std::string& args : {"run " + scenario.string() + " --out " + out.string() + " -q",
+                                  "run " + scenario.string() + " --out " + out.string() + " -q --resume",
+                                  "run " + other.string() + " --out " + out.string() + " -q"}) {
+    SCOPED_TRACE(args);
+    const Result second = run_nodus(args);
+    EXPECT_EQ(second.status, 2) << second.err;
+    EXPECT_EQ(second.err, expected);
+  }
+  kill(first, SIGKILL);
+  wait_for(first);
+  const Result resumed = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q --resume");
+  ASSERT_EQ(resumed.status, 0) << resumed.err;
+  expect_same_results(reference, out);
+}
+
+}  // namespace

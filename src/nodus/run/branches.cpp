@@ -4,8 +4,10 @@
 #include <cerrno>
 #include <chrono>
 #include <csignal>
+#include <cstdlib>
 #include <cstring>
 #include <map>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -13,10 +15,12 @@
 
 #include <spawn.h>
 #include <sys/wait.h>
+#include <unistd.h>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/output/folder_lock.hpp"
 #include "nodus/output/output_folder.hpp"
 #include "nodus/parallel/mpi_session.hpp"
 #include "nodus/run/run_outputs.hpp"
@@ -46,6 +50,19 @@ fs::path branch_start_checkpoint(const fs::path& out, const scenario::Scenario& 
   return out / "checkpoints" /
          persistence::checkpoint_file_name(branch.from,
                                            scenario.stages.at(static_cast<std::size_t>(branch.from)).name);
+}
+
+void lock_output_folder(const fs::path& dir, std::optional<output::FolderLock>& lock) {
+  std::string refused;
+  if (parallel::is_root()) {
+    try {
+      lock.emplace(dir);
+    } catch (const scenario::ScenarioError& e) {
+      refused = e.what();
+    }
+  }
+  if (!parallel::root_value(refused.empty()))
+    throw scenario::ScenarioError(refused.empty() ? dir.string() + ": --out: held by another run" : refused);
 }
 
 void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim, bool cancelled) {
@@ -150,6 +167,12 @@ Outcome run_one_branch(const Request& request, const scenario::Scenario& main_sc
   }
   const auto b = static_cast<std::size_t>(found - branches.begin());
   const fs::path dir = branch_dir(request.out, *found);
+  // A branch run by hand takes the run's folder as a run does; one that a run started (NODUS_RUN_PARENT, its
+  // parent) writes under the folder its run holds.
+  const char* parent = std::getenv("NODUS_RUN_PARENT");
+  const bool started_by_run = parent != nullptr && std::atol(parent) == static_cast<long>(getppid());
+  std::optional<output::FolderLock> lock;
+  if (!started_by_run && fs::is_directory(request.out)) lock_output_folder(request.out, lock);
   if (parallel::is_root()) output::remove_stale_temporary_files(dir);  // left by a killed run
   BranchStart start;
   if (request.resume) {

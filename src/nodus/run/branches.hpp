@@ -10,6 +10,7 @@
 #include <optional>
 #include <vector>
 
+#include "nodus/output/folder_lock.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/run.hpp"
@@ -39,6 +40,10 @@ std::filesystem::path branch_dir(const std::filesystem::path& out, const scenari
 std::filesystem::path branch_start_checkpoint(const std::filesystem::path& out,
                                               const scenario::Scenario& scenario,
                                               const scenario::BranchSpec& branch);
+
+/// Takes the output folder `dir` for this run (rank 0 locks it; every rank throws the refusal together) and
+/// puts the lock into `lock`. Throws scenario::ScenarioError if another process holds it.
+void lock_output_folder(const std::filesystem::path& dir, std::optional<output::FolderLock>& lock);
 
 /// Logs the message of a run stopped by stop_after_steps, or by Request::cancel when `cancelled`.
 void log_stopped_as_asked(const Request& request, const simulation::Simulation& sim, bool cancelled);

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/output/folder_lock.hpp"
 #include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
 #include "nodus/parallel/mpi_session.hpp"
@@ -49,6 +50,13 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   const fs::path& out = request.out;
   if (!request.branch.empty()) return run_one_branch(request, main_scenario);
 
+  // One run at a time in a folder, from before it reads what an earlier run left there to the end (branch
+  // processes write under it, and do not take it again). A folder that does not exist yet is taken when it is
+  // made, below.
+  std::optional<output::FolderLock> lock;  // rank 0's
+  const bool taken_early = fs::is_directory(out);
+  if (taken_early) lock_output_folder(out, lock);
+
   // With resume, everything that is read back is read and checked before anything is written.
   std::optional<simulation::SimulationState> resumed;
   std::vector<BranchStart> branch_starts(main_scenario.branches.size());
@@ -87,10 +95,9 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   // once every rank has read what it reads.
   parallel::barrier();
   const bool writes = parallel::is_root();
-  if (writes) {
-    fs::create_directories(out);
-    output::remove_stale_temporary_files(out);  // left by a killed run
-  }
+  if (writes) fs::create_directories(out);
+  if (!taken_early) lock_output_folder(out, lock);
+  if (writes) output::remove_stale_temporary_files(out);  // left by a killed run
   if (resumed) {
     sim.restore(std::move(*resumed), simulation::StartKind::resumed);
   } else if (writes) {
