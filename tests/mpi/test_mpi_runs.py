@@ -76,6 +76,21 @@ def with_petsc(source, target):
     with_solver(source, target, linear_solver="petsc")
 
 
+def wait_for_no_process_with(text, deadline):
+    """Waits until no process has `text` in its command line, or the deadline (time.monotonic()) passes."""
+    while time.monotonic() < deadline:
+        alive = False
+        for entry in Path("/proc").iterdir():
+            if entry.name.isdigit():
+                try:
+                    alive = alive or text in (entry / "cmdline").read_bytes().replace(b"\0", b" ").decode()
+                except OSError:
+                    pass
+        if not alive:
+            return
+        time.sleep(0.1)
+
+
 def main():
     exe, launcher, examples, work = sys.argv[1], sys.argv[2], Path(sys.argv[3]), Path(sys.argv[4])
     work.mkdir(parents=True, exist_ok=True)
@@ -226,6 +241,9 @@ def main():
         if not finished:
             os.killpg(process.pid, signal.SIGKILL)
         process.wait()
+        # The ranks outlive mpirun by a moment (they are not in its process group): until they end, the folder
+        # is theirs, and a resume into it is refused (one run at a time in a folder).
+        wait_for_no_process_with(str(killed), deadline=time.monotonic() + 60)
         r = mpirun(launcher, 2, [exe, "run", str(long_drag), "--out", str(killed), "--quiet", "--resume"])
         print(f"killed on 2 ranks after {steps} steps (of 320), resumed: exit status {r.returncode}")
         if finished or steps < 60 or r.returncode != 0:

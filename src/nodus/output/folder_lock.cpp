@@ -15,6 +15,7 @@
 #include <string>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
 #include "nodus/scenario/scenario.hpp"
 
@@ -51,8 +52,14 @@ FolderLock::FolderLock(const std::filesystem::path& dir) {
                                          : std::nullopt;
   ::close(fd_);
   fd_ = -1;
-  if (error != EWOULDBLOCK)
-    throw std::runtime_error(fmt::format("cannot lock folder '{}': {}", dir.string(), std::strerror(error)));
+  if (error != EWOULDBLOCK) {
+    // Some network file systems refuse flock (NFS without lock support: ENOLCK; on a read-only descriptor:
+    // EBADF): the run goes on, unguarded, rather than not at all.
+    spdlog::warn(
+        "cannot lock folder '{}' ({}): a second run into it would not be refused on this file system",
+        dir.string(), std::strerror(error));
+    return;
+  }
   throw scenario::ScenarioError(fmt::format(
       "{}: --out: expected a folder no other run is writing into, got one that {} is writing into (let it "
       "end, "

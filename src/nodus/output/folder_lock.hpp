@@ -11,7 +11,8 @@ class FolderLock {
  public:
   /// Locks the folder `dir` (it must exist). Throws scenario::ScenarioError (bad input, one line) if another
   /// process holds it, naming that process where /proc/locks tells it; std::runtime_error if the folder
-  /// cannot be opened.
+  /// cannot be opened. Where the file system refuses the lock itself (some NFS mounts), it warns and holds
+  /// nothing.
   explicit FolderLock(const std::filesystem::path& dir);
   ~FolderLock();
   FolderLock(const FolderLock&) = delete;
