@@ -1,8 +1,8 @@
-// A run whose disk fills up: it stops with exit status 4 and one line naming the file and the system's
-// reason; its folder, moved to a disk with room, resumes to the files of the run never stopped. The disk is a
-// tmpfs of 300 kB mounted for the test; where mounting is not allowed (not root, a container without the
-// capability), the test is skipped and tests/output's AtomicFile.AFullDiskIsSaidAndTheTargetKept, on
-// /dev/full, still checks the message.
+// A run whose disk fills up, or cannot be written at all: it stops with exit status 4 and one line naming the
+// file and the system's reason; its folder, moved to a disk with room, resumes to the files of the run never
+// stopped. The disk is a tmpfs of 300 kB mounted for the test; where mounting is not allowed (not root, a
+// container without the capability), the test is skipped and tests/output's
+// AtomicFile.AFullDiskIsSaidAndTheTargetKept, on /dev/full, still checks the message.
 
 #include <gtest/gtest.h>
 
@@ -22,12 +22,12 @@ using nodus::testing::run_nodus;
 using nodus::testing::scratch;
 using nodus::testing::write;
 
-/// A tmpfs of `size` mounted at `at` for the life of the object, if this process may mount one.
+/// A tmpfs mounted at `at` with mount `options` for the life of the object, if this process may mount one.
 class SmallDisk {
  public:
-  SmallDisk(const fs::path& at, const std::string& size) : at_(at) {
+  SmallDisk(const fs::path& at, const std::string& options) : at_(at) {
     fs::create_directories(at_);
-    const std::string command = "mount -t tmpfs -o size=" + size + " tmpfs " + at_.string() + " 2> /dev/null";
+    const std::string command = "mount -t tmpfs -o " + options + " tmpfs " + at_.string() + " 2> /dev/null";
     mounted_ = std::system(command.c_str()) == 0;
   }
   ~SmallDisk() {
@@ -55,7 +55,7 @@ TEST(FullDisk, StopsWithItsCauseAndResumesElsewhere) {
   const fs::path moved = scratch() / "full_disk_moved";
   fs::remove_all(moved);
   {
-    SmallDisk disk(scratch() / "small_disk", "300k");
+    SmallDisk disk(scratch() / "small_disk", "size=300k");
     if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here";
     const fs::path out = scratch() / "small_disk" / "run";
     const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q");
@@ -71,6 +71,19 @@ TEST(FullDisk, StopsWithItsCauseAndResumesElsewhere) {
   const Result resumed = run_nodus("run " + scenario.string() + " --out " + moved.string() + " -q --resume");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   expect_same_results(reference, moved);
+}
+
+// A read-only file system: the run cannot even make its folder, and says so.
+TEST(FullDisk, AReadOnlyFileSystemIsSaid) {
+  const fs::path scenario = write("read_only.yaml", nodus::testing::kDrag);
+  SmallDisk disk(scratch() / "read_only_disk", "size=100k,ro");
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here";
+  const fs::path out = scratch() / "read_only_disk" / "run";
+  const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q");
+  EXPECT_EQ(r.status, 4) << r.err;
+  EXPECT_EQ(r.err, "nodus: cannot create folder '" + out.string() +
+                       "': Read-only file system; the run stopped there: it has no checkpoint yet: once the "
+                       "cause is removed, run it again\n");
 }
 
 }  // namespace

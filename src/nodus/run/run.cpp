@@ -3,12 +3,14 @@
 #include <algorithm>
 #include <optional>
 #include <string>
+#include <system_error>
 #include <utility>
 #include <vector>
 
 #include <fmt/format.h>
 #include <spdlog/spdlog.h>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/folder_lock.hpp"
 #include "nodus/output/output_folder.hpp"
 #include "nodus/output/summary_writer.hpp"
@@ -95,7 +97,11 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   // once every rank has read what it reads.
   parallel::barrier();
   const bool writes = parallel::is_root();
-  if (writes) fs::create_directories(out);
+  if (writes) {
+    std::error_code error;
+    fs::create_directories(out, error);
+    if (error) output::throw_write_error("create folder", out, error.value());
+  }
   if (!taken_early) lock_output_folder(out, lock);
   if (writes) output::remove_stale_temporary_files(out);  // left by a killed run
   if (resumed) {
