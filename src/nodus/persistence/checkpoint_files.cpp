@@ -71,7 +71,7 @@ std::optional<CheckpointInfo> newest_intact_checkpoint(const std::filesystem::pa
   std::error_code error;
   if (!std::filesystem::is_directory(folder, error)) return std::nullopt;
   std::vector<CheckpointInfo> readable;
-  std::vector<std::string> damaged;  // "NAME (what is wrong)"
+  std::vector<std::string> damaged;  // their file names
   const auto pass_over = [&damaged](const std::filesystem::path& path, const DamagedFile& e) {
     const std::string what = e.what();
     const std::string reason = what.substr(what.find(": checkpoint: ") + 14);
