@@ -105,6 +105,15 @@ output:
   contact_csv: true
 )";
 
+/// kDrag with a drag stage of 300 steps (seconds): long enough to be stopped, or to fill a small disk, in the
+/// middle.
+inline std::string long_drag() {
+  std::string text = kDrag;
+  const std::string drag = "  - name: drag\n    steps: 4\n";
+  text.replace(text.find(drag), drag.size(), "  - name: drag\n    steps: 300\n");
+  return text;
+}
+
 /// The branches: `same` repeats the main run's stages after drag with its friction, `mu_0.1` moves back with
 /// less friction.
 inline const std::string kBranches = R"(branches:

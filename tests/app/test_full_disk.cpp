@@ -42,9 +42,7 @@ class SmallDisk {
 };
 
 TEST(FullDisk, StopsWithItsCauseAndResumesElsewhere) {
-  std::string text = nodus::testing::kDrag;
-  const std::string drag = "  - name: drag\n    steps: 4\n";
-  text.replace(text.find(drag), drag.size(), "  - name: drag\n    steps: 300\n");
+  std::string text = nodus::testing::long_drag();
   text.replace(text.find("  vtk_every: 2\n"), 14, "  vtk_every: 100\n  checkpoint_every: 10\n");
   const fs::path scenario = write("full_disk.yaml", text);
   const fs::path reference = scratch() / "full_disk_ref";

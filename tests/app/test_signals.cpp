@@ -23,18 +23,11 @@ namespace {
 namespace fs = std::filesystem;
 
 using nodus::testing::expect_same_results;
+using nodus::testing::long_drag;
 using nodus::testing::Result;
 using nodus::testing::run_nodus;
 using nodus::testing::scratch;
 using nodus::testing::write;
-
-/// kDrag with a drag of 300 steps (some 5 s): long enough to be stopped in the middle.
-std::string long_drag() {
-  std::string text = nodus::testing::kDrag;
-  const std::string drag = "  - name: drag\n    steps: 4\n";
-  text.replace(text.find(drag), drag.size(), "  - name: drag\n    steps: 300\n");
-  return text;
-}
 
 /// `nodus run SCENARIO --out OUT -q [extra]` started in a process of its own, stderr into `err`.
 pid_t start_nodus(const fs::path& scenario, const fs::path& out, const fs::path& err,
