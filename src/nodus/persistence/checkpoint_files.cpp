@@ -17,6 +17,12 @@
 namespace nodus::persistence {
 namespace {
 
+/// Orders checkpoints from the oldest to the newest: by steps, at equal steps the stage-end file after
+/// `latest`, then by name, so that the choice does not depend on the order of the listing.
+auto newer_key(const CheckpointInfo& i) {
+  return std::tuple(i.steps, i.path.filename() != kLatestCheckpoint, i.path.filename().string());
+}
+
 std::string read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);
   if (!in) bad_file(path, "a readable file", "cannot open it");
@@ -55,12 +61,7 @@ std::optional<CheckpointInfo> newest_checkpoint(const std::filesystem::path& fol
   for (const auto& entry : std::filesystem::directory_iterator(folder, error)) {
     if (!entry.is_regular_file() || entry.path().extension() != kCheckpointExtension) continue;
     const CheckpointInfo info = checkpoint_info(entry.path());
-    // At equal steps the stage-end file, then the first name, so that the choice does not depend on the
-    // order of the listing.
-    const auto key = [](const CheckpointInfo& i) {
-      return std::tuple(i.steps, i.path.filename() != kLatestCheckpoint, i.path.filename().string());
-    };
-    if (!newest || key(info) > key(*newest)) newest = info;
+    if (!newest || newer_key(info) > newer_key(*newest)) newest = info;
   }
   if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
   return newest;
@@ -87,11 +88,8 @@ std::optional<CheckpointInfo> newest_intact_checkpoint(const std::filesystem::pa
     }
   }
   if (error) throw std::runtime_error("cannot list folder '" + folder.string() + "': " + error.message());
-  const auto key = [](const CheckpointInfo& i) {
-    return std::tuple(i.steps, i.path.filename() != kLatestCheckpoint, i.path.filename().string());
-  };
   std::sort(readable.begin(), readable.end(),
-            [&key](const CheckpointInfo& a, const CheckpointInfo& b) { return key(a) > key(b); });
+            [](const CheckpointInfo& a, const CheckpointInfo& b) { return newer_key(a) > newer_key(b); });
   for (const CheckpointInfo& info : readable) {
     try {
       read_checkpoint(info.path, scenario);
