@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
 # Installs nodus's build dependencies from Debian's packages (Debian 12), if any is missing.
 set -euo pipefail
-packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libmumps-seq-dev libyaml-cpp-dev
+packages=(g++ cmake ninja-build pkg-config libeigen3-dev libsuitesparse-dev libmetis-dev libmumps-seq-dev libyaml-cpp-dev zlib1g-dev
   libcli11-dev libspdlog-dev libfmt-dev nlohmann-json3-dev libgtest-dev libgmock-dev libbenchmark-dev
   libopenblas0-openmp python3-dev pybind11-dev python3-numpy python3-matplotlib python3-pytest petsc-dev openmpi-bin)
+# zlib1g-dev: the compressed arrays of the VTK files (output.vtk_format: binary).
 # libmumps-seq-dev: MUMPS in one process (multifrontal LDL^T with pivoting, LU), solver.linear_solver: mumps.
 # petsc-dev, openmpi-bin: runs on several MPI ranks (`mpirun -n N nodus run`, solver.linear_solver: petsc;
 # docs/parallel.md); petsc-dev brings PETSc 3.18 with MUMPS, SuperLU_dist and hypre, and OpenMPI. A build

@@ -2,7 +2,8 @@
 """Pictures of a yarn run of nodus (Durville 2012, Figs. 22-23 and 29-30): the cross-section at mid-length
 before and after, and a 3D view of the fibres. Units: mm.
 
-Usage (Debian's python3 with python3-numpy and python3-matplotlib; run with /usr/bin/python3):
+Usage (Debian's python3 with python3-numpy and python3-matplotlib, and nodus's Python module for its reader of
+VTK files: run with PYTHONPATH=build/release/python /usr/bin/python3):
   scripts/yarn_section.py DIR [--stage NAME] [--out PNG]
       DIR a run's output folder. Draws the section of the initial state and of the final state (or of the end
       of stage NAME, a stage name or its index NNN) side by side, coloured by roving, and a 3D view of the
@@ -40,10 +41,10 @@ import csv
 import os
 import re
 import sys
-import xml.etree.ElementTree as ET
 from pathlib import Path
 
 import numpy as np
+from nodus.vtk import read_vtp
 import matplotlib
 
 matplotlib.use("Agg")
@@ -71,11 +72,8 @@ def read_initial(run, beams, final):
     vtp = run / "vtk" / "step_000000.vtp"
     if not vtp.exists():
         sys.exit(f"{vtp}: expected the initial VTK file of the run (docs/output.md), got none")
-    piece = ET.parse(vtp).getroot().find("PolyData/Piece")
-    arrays = {a.get("Name"): a for a in piece.find("PointData").iter("DataArray")}
-    points = np.array(piece.find("Points/DataArray").text.split(), dtype=float).reshape(-1, 3)
-    node = np.array(arrays["node"].text.split(), dtype=int)
-    g1 = np.array(arrays["g1"].text.split(), dtype=float).reshape(-1, 3)
+    picture = read_vtp(vtp)
+    points, node, g1 = picture.points, picture.point_data["node"], picture.point_data["g1"]
     count = sum(len(final[b]) for b in beams)
     if count > len(points):
         sys.exit(f"{vtp}: expected at least {count} points (the nodes of the node table), got {len(points)}")

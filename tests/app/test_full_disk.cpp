@@ -59,8 +59,10 @@ TEST(FullDisk, StopsWithItsCauseAndResumesElsewhere) {
     const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q");
     EXPECT_EQ(r.status, 4) << r.err;
     EXPECT_EQ(r.err.rfind("nodus: cannot write '" + out.string() + "/", 0), 0u) << r.err;
-    EXPECT_NE(r.err.find("': No space left on device; the run stopped there: once the cause is removed, "
-                         "continue it with --resume from its newest checkpoint\n"),
+    // The file that did not fit was refused before it was written: its size and the free space are said.
+    EXPECT_NE(r.err.find("': No space left on device (it takes "), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find(" are free); the run stopped there: once the cause is removed, continue it with "
+                         "--resume from its newest checkpoint\n"),
               std::string::npos)
         << r.err;
     EXPECT_TRUE(fs::exists(out / "checkpoints" / "latest.nodus-state"));
@@ -69,6 +71,23 @@ TEST(FullDisk, StopsWithItsCauseAndResumesElsewhere) {
   const Result resumed = run_nodus("run " + scenario.string() + " --out " + moved.string() + " -q --resume");
   ASSERT_EQ(resumed.status, 0) << resumed.err;
   expect_same_results(reference, moved);
+}
+
+// A run whose pictures will not fit on its disk says so when it starts, from the size of its first picture
+// and the number of pictures its stages' steps will write.
+TEST(FullDisk, PicturesThatWillNotFitAreForetold) {
+  std::string text = nodus::testing::long_drag();
+  text.replace(text.find("  vtk_every: 2\n"), 14, "  vtk_every: 1\n");
+  const fs::path scenario = write("short_of_space.yaml", text);
+  SmallDisk disk(scratch() / "small_disk", "size=300k");
+  if (!disk.mounted()) GTEST_SKIP() << "cannot mount a tmpfs here";
+  const fs::path out = scratch() / "small_disk" / "run";
+  const Result r = run_nodus("run " + scenario.string() + " --out " + out.string() + " -q");
+  EXPECT_EQ(r.status, 4) << r.err;
+  const std::size_t warning =
+      r.err.find("the pictures of this run may not fit on its disk: 307 more VTK outputs");
+  EXPECT_NE(warning, std::string::npos) << r.err;
+  EXPECT_LT(warning, r.err.find("nodus: cannot write")) << r.err;
 }
 
 // A read-only file system: the run cannot even make its folder, and says so.

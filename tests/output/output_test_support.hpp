@@ -1,10 +1,14 @@
 #pragma once
-// Shared helpers of the output tests: a scratch folder, a small two-beam model, a deformed state, and a
-// minimal XML reader that checks well-formedness (balanced tags, quoted attributes).
+// Shared helpers of the output tests: a scratch folder, a small two-beam model, a deformed state, a minimal
+// XML reader that checks well-formedness (balanced tags, quoted attributes), and a reader of VTK files that
+// decodes their compressed appended arrays from the format's description (VTK's file-formats page), not from
+// nodus's writer.
 
 #include <gtest/gtest.h>
 
 #include <cctype>
+#include <cstdint>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -15,6 +19,7 @@
 #include <vector>
 
 #include <unistd.h>
+#include <zlib.h>
 
 #include <Eigen/Core>
 
@@ -219,6 +224,86 @@ inline std::unique_ptr<XmlElement> parse_xml(const std::string& doc) {
   }
   if (!open.empty()) fail("unclosed <" + open.back()->name + ">");
   if (!root) fail("no root element");
+  return root;
+}
+
+/// The values of one appended array of a VTK file with header_type="UInt64" and the zlib compressor:
+/// `data` points at its header [blocks, block size, last block size or 0, compressed sizes], then the
+/// compressed blocks. The bytes are read as `T`, little-endian (the test machines' order).
+template <typename T>
+std::vector<double> decode_appended(const std::string& appended, std::size_t offset) {
+  auto word = [&](std::size_t i) {
+    std::uint64_t w = 0;
+    if (offset + 8 * (i + 1) > appended.size()) throw std::runtime_error("appended header out of the data");
+    std::memcpy(&w, appended.data() + offset + 8 * i, 8);
+    return w;
+  };
+  const std::uint64_t blocks = word(0), block_size = word(1), last_size = word(2);
+  std::string bytes;
+  std::size_t at = offset + 8 * (3 + blocks);
+  for (std::uint64_t b = 0; b < blocks; ++b) {
+    const std::uint64_t compressed = word(3 + b);
+    uLongf size = static_cast<uLongf>(b + 1 == blocks && last_size != 0 ? last_size : block_size);
+    std::string block(size, '\0');
+    if (at + compressed > appended.size() ||
+        uncompress(reinterpret_cast<Bytef*>(block.data()), &size,
+                   reinterpret_cast<const Bytef*>(appended.data() + at),
+                   static_cast<uLong>(compressed)) != Z_OK ||
+        size != block.size())
+      throw std::runtime_error("appended block " + std::to_string(b) + " does not uncompress to its size");
+    bytes += block;
+    at += compressed;
+  }
+  if (bytes.size() % sizeof(T) != 0)
+    throw std::runtime_error("appended array is not a whole number of values");
+  std::vector<double> values(bytes.size() / sizeof(T));
+  for (std::size_t i = 0; i < values.size(); ++i) {
+    T v;
+    std::memcpy(&v, bytes.data() + i * sizeof(T), sizeof(T));
+    values[i] = static_cast<double>(v);
+  }
+  return values;
+}
+
+/// Parses a VTK XML document, ASCII or with raw appended data: in the latter, every DataArray of
+/// format="appended" gets as its text the decoded values (17 significant digits), so that a test reads both
+/// encodings alike. Throws std::runtime_error on a malformed document or array.
+inline std::unique_ptr<XmlElement> parse_vtk(const std::string& doc) {
+  const std::string opening = "<AppendedData encoding=\"raw\">";
+  const std::size_t start = doc.find(opening);
+  if (start == std::string::npos) return parse_xml(doc);
+  const std::size_t underscore = doc.find('_', start + opening.size());
+  const std::string closing = "</AppendedData>";
+  const std::size_t end = doc.rfind(closing);
+  if (underscore == std::string::npos || end == std::string::npos || end < underscore)
+    throw std::runtime_error("AppendedData without '_' or its closing tag");
+  const std::string appended = doc.substr(underscore + 1, end - underscore - 1);
+  auto root = parse_xml(doc.substr(0, start) + doc.substr(end + closing.size()));
+  if (root->attribute("header_type") != "UInt64" || root->attribute("compressor") != "vtkZLibDataCompressor")
+    throw std::runtime_error("expected header_type UInt64 and the zlib compressor");
+  std::vector<XmlElement*> stack{root.get()};
+  while (!stack.empty()) {
+    XmlElement* e = stack.back();
+    stack.pop_back();
+    for (auto& c : e->children) stack.push_back(c.get());
+    if (e->name != "DataArray" || !e->attributes.count("format") || e->attribute("format") != "appended")
+      continue;
+    const std::size_t offset = std::stoul(e->attribute("offset"));
+    const std::string& type = e->attribute("type");
+    std::vector<double> values;
+    if (type == "Float64")
+      values = decode_appended<double>(appended, offset);
+    else if (type == "Int64")
+      values = decode_appended<std::int64_t>(appended, offset);
+    else if (type == "Int32")
+      values = decode_appended<std::int32_t>(appended, offset);
+    else
+      throw std::runtime_error("unexpected DataArray type " + type);
+    std::ostringstream text;
+    text.precision(17);
+    for (double v : values) text << v << ' ';
+    e->text = text.str();
+  }
   return root;
 }
 

@@ -74,5 +74,36 @@ TEST(AtomicFile, AFullDiskIsSaidAndTheTargetKept) {
   EXPECT_EQ(count_files(dir.path()), 1);  // the temporary file (here the link) removed
 }
 
+// A file larger than the free space of its disk is refused before a byte of it is written, with its size and
+// the space there is; the target keeps its content.
+TEST(AtomicFile, AFileLargerThanTheFreeSpaceIsRefusedBeforeWriting) {
+  ScratchDir dir;
+  const auto path = dir.path() / "a.txt";
+  write_file_atomically(path, "kept");
+  const std::uintmax_t free = std::filesystem::space(dir.path()).available;
+  try {
+    require_space(dir.path(), free + 1'000'000'000'000, path);
+    FAIL() << "no exception";
+  } catch (const WriteError& e) {
+    const std::string message = e.what();
+    EXPECT_EQ(message.rfind("cannot write '" + path.string() + "': No space left on device (it takes ", 0),
+              0u)
+        << message;
+    EXPECT_NE(message.find(" GB, "), std::string::npos) << message;
+    EXPECT_NE(message.find(" are free)"), std::string::npos) << message;
+  }
+  EXPECT_NO_THROW(require_space(dir.path(), 0, path));
+  EXPECT_NO_THROW(require_space(dir.path() / "no such folder", 1'000'000'000'000'000, path));  // cannot tell
+  EXPECT_EQ(read_text(path), "kept");
+}
+
+TEST(HumanSize, DecimalUnits) {
+  EXPECT_EQ(human_size(0), "0 bytes");
+  EXPECT_EQ(human_size(999), "999 bytes");
+  EXPECT_EQ(human_size(1500), "2 kB");
+  EXPECT_EQ(human_size(2'340'000), "2.3 MB");
+  EXPECT_EQ(human_size(7'800'000'000), "7.8 GB");
+}
+
 }  // namespace
 }  // namespace nodus::output

@@ -126,7 +126,7 @@ void expect_contact_table(const std::filesystem::path& path, const contact::Cont
 
 /// A VTK file read back, and its CellData.
 struct VtpFile {
-  explicit VtpFile(const std::filesystem::path& path) : root(testing::parse_xml(testing::read_text(path))) {}
+  explicit VtpFile(const std::filesystem::path& path) : root(testing::parse_vtk(testing::read_text(path))) {}
   const testing::XmlElement& cell_data() const { return root->one("PolyData").one("Piece").one("CellData"); }
   std::unique_ptr<testing::XmlElement> root;
 };

@@ -78,15 +78,24 @@ void expect_close(double read, double expected, const std::string& what) {
 }
 
 std::unique_ptr<testing::XmlElement> contact_document(const contact::ContactGeometry& g,
-                                                      std::optional<double> time) {
+                                                      std::optional<double> time,
+                                                      VtkEncoding encoding = VtkEncoding::binary) {
   std::ostringstream out;
-  write_contact_vtp(out, g, time);
-  return testing::parse_xml(out.str());
+  write_contact_vtp(out, g, time, nullptr, encoding);
+  return testing::parse_vtk(out.str());
 }
 
-TEST(ContactVtp, PolylinesPerZoneAndSegmentsPerElement) {
+/// The tests that read a document back, in either encoding.
+class ContactVtpIn : public ::testing::TestWithParam<VtkEncoding> {};
+
+INSTANTIATE_TEST_SUITE_P(Encodings, ContactVtpIn, ::testing::Values(VtkEncoding::binary, VtkEncoding::ascii),
+                         [](const auto& info) {
+                           return info.param == VtkEncoding::binary ? "binary" : "ascii";
+                         });
+
+TEST_P(ContactVtpIn, PolylinesPerZoneAndSegmentsPerElement) {
   const contact::ContactGeometry g = two_zone_geometry();
-  const auto root = contact_document(g, 0.75);
+  const auto root = contact_document(g, 0.75, GetParam());
   ASSERT_EQ(root->name, "VTKFile");
   EXPECT_EQ(root->attribute("type"), "PolyData");
   const testing::XmlElement& poly = root->one("PolyData");
@@ -158,7 +167,7 @@ TEST(ContactVtp, ContactForcesOnTheSegmentsZerosOnThePolylines) {
   const std::vector<simulation::ContactState> states = five_states(g);
   std::ostringstream out;
   write_contact_vtp(out, g, 0.5, &states);
-  const auto root = testing::parse_xml(out.str());
+  const auto root = testing::parse_vtk(out.str());
   const testing::XmlElement& data = root->one("PolyData").one("Piece").one("CellData");
   EXPECT_EQ(data.all("DataArray").size(), 10u);
   EXPECT_EQ(data.data_array("normal_force").attribute("type"), "Float64");
@@ -210,14 +219,14 @@ TEST(ContactVtp, RejectsStatesThatDoNotMatchTheElements) {
   const std::vector<simulation::ContactState> none;
   std::ostringstream empty;
   write_contact_vtp(empty, contact::ContactGeometry{}, 1.0, &none);
-  const auto root = testing::parse_xml(empty.str());
+  const auto root = testing::parse_vtk(empty.str());
   const testing::XmlElement& data = root->one("PolyData").one("Piece").one("CellData");
   for (const char* name : {"normal_force", "force", "tangential_force", "state"})
     EXPECT_TRUE(testing::numbers(data.data_array(name).text).empty()) << name;
 }
 
-TEST(ContactVtp, EmptyGeometryGivesAValidEmptyDocument) {
-  const auto root = contact_document(contact::ContactGeometry{}, 2.0);
+TEST_P(ContactVtpIn, EmptyGeometryGivesAValidEmptyDocument) {
+  const auto root = contact_document(contact::ContactGeometry{}, 2.0, GetParam());
   const testing::XmlElement& poly = root->one("PolyData");
   EXPECT_DOUBLE_EQ(testing::numbers(poly.one("FieldData").data_array("TimeValue").text).at(0), 2.0);
   const testing::XmlElement& piece = poly.one("Piece");
@@ -287,7 +296,7 @@ TEST(ContactPvd, SeriesListsContactFiles) {
   for (std::size_t i = 0; i < sets.size(); ++i) {
     EXPECT_EQ(sets[i]->attribute("file"), expected[i].first);
     EXPECT_DOUBLE_EQ(std::stod(sets[i]->attribute("timestep")), expected[i].second);
-    const auto file = testing::parse_xml(testing::read_text(dir.path() / expected[i].first));
+    const auto file = testing::parse_vtk(testing::read_text(dir.path() / expected[i].first));
     const testing::XmlElement& poly = file->one("PolyData");
     EXPECT_DOUBLE_EQ(testing::numbers(poly.one("FieldData").data_array("TimeValue").text).at(0),
                      expected[i].second);

@@ -4,8 +4,11 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <numbers>
 #include <set>
+#include <sstream>
 #include <stdexcept>
 
 #include <Eigen/Geometry>
@@ -13,6 +16,7 @@
 #include "nodus/beam/strain_measures.hpp"
 #include "nodus/output/vtk_format.hpp"
 #include "nodus/output/vtk_series.hpp"
+#include "nodus/output/vtk_xml.hpp"
 #include "output_test_support.hpp"
 
 namespace nodus::output {
@@ -86,17 +90,25 @@ TEST(TubeMesh, RejectsBadInput) {
   EXPECT_THROW(tube_mesh(m, Eigen::VectorXd::Zero(3), kSides), std::invalid_argument);
 }
 
-TEST(Vtp, DocumentIsWellFormedWithConsistentCounts) {
+/// The tests that read a document back, in either encoding.
+class VtpIn : public ::testing::TestWithParam<VtkEncoding> {};
+
+INSTANTIATE_TEST_SUITE_P(Encodings, VtpIn, ::testing::Values(VtkEncoding::binary, VtkEncoding::ascii),
+                         [](const auto& info) {
+                           return info.param == VtkEncoding::binary ? "binary" : "ascii";
+                         });
+
+TEST_P(VtpIn, DocumentIsWellFormedWithConsistentCounts) {
   const model::Model m = testing::two_beam_model();
   const Eigen::VectorXd x = testing::deformed_state(m);
   ScratchDir dir;
   const auto path = dir.path() / "state.vtp";
-  write_vtp(path, m, x, kSides, 0.25);
-  const auto root = testing::parse_xml(testing::read_text(path));
+  write_vtp(path, m, x, kSides, 0.25, GetParam());
+  const auto root = testing::parse_vtk(testing::read_text(path));
 
   ASSERT_EQ(root->name, "VTKFile");
   EXPECT_EQ(root->attribute("type"), "PolyData");
-  EXPECT_EQ(root->attribute("version"), "0.1");
+  EXPECT_EQ(root->attribute("version"), GetParam() == VtkEncoding::binary ? "1.0" : "0.1");
   EXPECT_EQ(root->attribute("byte_order"), "LittleEndian");
   const testing::XmlElement& poly = root->one("PolyData");
   EXPECT_DOUBLE_EQ(testing::numbers(poly.one("FieldData").data_array("TimeValue").text).at(0), 0.25);
@@ -177,11 +189,11 @@ TEST(Vtp, DocumentIsWellFormedWithConsistentCounts) {
   for (int n = 0; n < m.num_nodes(); ++n) EXPECT_EQ(line[static_cast<std::size_t>(n)], n);
 }
 
-TEST(Vtp, ReferenceRingsReadBackAtBeamRadius) {
+TEST_P(VtpIn, ReferenceRingsReadBackAtBeamRadius) {
   const model::Model m = testing::two_beam_model();
   ScratchDir dir;
-  write_vtp(dir.path() / "ref.vtp", m, m.reference(), kSides);
-  const auto root = testing::parse_xml(testing::read_text(dir.path() / "ref.vtp"));
+  write_vtp(dir.path() / "ref.vtp", m, m.reference(), kSides, std::nullopt, GetParam());
+  const auto root = testing::parse_vtk(testing::read_text(dir.path() / "ref.vtp"));
   const testing::XmlElement& piece = root->one("PolyData").one("Piece");
   EXPECT_TRUE(root->one("PolyData").all("FieldData").empty());
   const auto points = testing::numbers(piece.one("Points").one("DataArray").text);
@@ -195,6 +207,65 @@ TEST(Vtp, ReferenceRingsReadBackAtBeamRadius) {
                     1e-10);
       }
     }
+}
+
+// The appended arrays of a binary file, decoded by the test's own reader: whole blocks of 32 KiB and a
+// partial last one, an exact multiple of the block (its last size 0), and an empty array.
+TEST(CompressedArray, BlocksAreThoseVtkReads) {
+  const auto header = [](const std::string& bytes, int i) {
+    std::uint64_t w = 0;
+    std::memcpy(&w, bytes.data() + 8 * i, 8);
+    return w;
+  };
+  for (const std::size_t count : {std::size_t{100000}, std::size_t{4096}, std::size_t{1}}) {
+    std::vector<double> values(count);
+    for (std::size_t i = 0; i < count; ++i)
+      values[i] = std::sin(0.001 * static_cast<double>(i)) * 1e3 + 0.5 * i;
+    const std::string bytes = vtk_xml::compressed_array(values.data(), count * sizeof(double));
+    const std::uint64_t size = count * sizeof(double);
+    EXPECT_EQ(header(bytes, 0), (size + 32767) / 32768) << count;
+    EXPECT_EQ(header(bytes, 1), 32768u);
+    EXPECT_EQ(header(bytes, 2), size % 32768) << count;
+    EXPECT_EQ(testing::decode_appended<double>(bytes, 0), values) << count;
+    // Smaller than the values themselves (a smooth series compresses).
+    if (count > 1) EXPECT_LT(bytes.size(), size) << count;
+  }
+  const std::string empty = vtk_xml::compressed_array(nullptr, 0);
+  EXPECT_EQ(empty.size(), 24u);
+  EXPECT_EQ(header(empty, 0), 0u);
+  EXPECT_TRUE(testing::decode_appended<double>(empty, 0).empty());
+}
+
+// Both encodings hold the same values: the ASCII file's 12 significant digits against the binary file's
+// exact ones.
+TEST(Vtp, BinaryAndAsciiHoldTheSameArrays) {
+  const model::Model m = testing::two_beam_model();
+  const Eigen::VectorXd x = testing::deformed_state(m);
+  std::ostringstream binary, ascii;
+  write_vtp(binary, m, x, kSides, 0.5, VtkEncoding::binary);
+  write_vtp(ascii, m, x, kSides, 0.5, VtkEncoding::ascii);
+  EXPECT_EQ(binary.str().find("format=\"ascii\">\n"), std::string::npos);  // only TimeValue is inline
+  const auto b = testing::parse_vtk(binary.str());
+  const auto a = testing::parse_vtk(ascii.str());
+  const testing::XmlElement& pb = b->one("PolyData").one("Piece");
+  const testing::XmlElement& pa = a->one("PolyData").one("Piece");
+  int arrays = 0;
+  for (const char* section : {"PointData", "Points", "Lines", "Polys"}) {
+    const auto in_b = pb.one(section).all("DataArray");
+    const auto in_a = pa.one(section).all("DataArray");
+    ASSERT_EQ(in_b.size(), in_a.size()) << section;
+    for (std::size_t k = 0; k < in_b.size(); ++k, ++arrays) {
+      const std::string& name = in_b[k]->attribute("Name");
+      EXPECT_EQ(name, in_a[k]->attribute("Name"));
+      EXPECT_EQ(in_b[k]->attribute("type"), in_a[k]->attribute("type")) << name;
+      const auto vb = testing::numbers(in_b[k]->text);
+      const auto va = testing::numbers(in_a[k]->text);
+      ASSERT_EQ(vb.size(), va.size()) << name;
+      for (std::size_t i = 0; i < vb.size(); ++i)
+        ASSERT_NEAR(vb[i], va[i], 1e-11 * (1 + std::abs(vb[i]))) << name;
+    }
+  }
+  EXPECT_EQ(arrays, 5 + beam::kNumStrains + 1 + 4);
 }
 
 TEST(Pvd, SeriesListsTheFilesWritten) {
@@ -229,7 +300,7 @@ TEST(Pvd, SeriesListsTheFilesWritten) {
     EXPECT_EQ(sets[i]->attribute("file"), expected[i].first);
     EXPECT_DOUBLE_EQ(std::stod(sets[i]->attribute("timestep")), expected[i].second);
     EXPECT_TRUE(std::filesystem::exists(dir.path() / expected[i].first)) << expected[i].first;
-    EXPECT_NO_THROW(testing::parse_xml(testing::read_text(dir.path() / expected[i].first)));
+    EXPECT_NO_THROW(testing::parse_vtk(testing::read_text(dir.path() / expected[i].first)));
   }
   // No temporary files are left behind.
   for (const auto& folder : {dir.path(), dir.path() / "vtk"})

@@ -9,6 +9,8 @@
 #include <string>
 #include <system_error>
 
+#include <fmt/format.h>
+
 namespace nodus::output {
 
 std::filesystem::path temporary_path(const std::filesystem::path& path, long pid) {
@@ -26,6 +28,23 @@ void throw_write_error(std::string_view what, const std::filesystem::path& path,
   throw WriteError("cannot " + std::string(what) + " '" + path.string() + "': " + std::strerror(error));
 }
 
+void require_space(const std::filesystem::path& folder, std::uintmax_t bytes,
+                   const std::filesystem::path& path) {
+  std::error_code error;
+  const std::filesystem::space_info space = std::filesystem::space(folder, error);
+  if (error || space.available == static_cast<std::uintmax_t>(-1) || space.available >= bytes) return;
+  throw WriteError(fmt::format("cannot write '{}': {} (it takes {}, {} are free)", path.string(),
+                               std::strerror(ENOSPC), human_size(bytes), human_size(space.available)));
+}
+
+std::string human_size(std::uintmax_t bytes) {
+  const auto b = static_cast<double>(bytes);
+  if (b >= 1e9) return fmt::format("{:.1f} GB", b / 1e9);
+  if (b >= 1e6) return fmt::format("{:.1f} MB", b / 1e6);
+  if (b >= 1e3) return fmt::format("{:.0f} kB", b / 1e3);
+  return fmt::format("{} bytes", bytes);
+}
+
 AtomicFile::AtomicFile(std::filesystem::path path)
     : path_(std::move(path)), temp_(temporary_path(path_, static_cast<long>(::getpid()))) {
   fd_ = ::open(temp_.c_str(), O_WRONLY | O_CREAT | O_TRUNC | O_CLOEXEC, 0644);
@@ -41,6 +60,7 @@ AtomicFile::~AtomicFile() {
 
 void AtomicFile::commit() {
   const std::string content = std::move(buffer_).str();
+  require_space(temp_.has_parent_path() ? temp_.parent_path() : ".", content.size(), path_);
   for (std::size_t done = 0; done < content.size();) {
     const ssize_t n = ::write(fd_, content.data() + done, content.size() - done);
     if (n < 0 && errno == EINTR) continue;

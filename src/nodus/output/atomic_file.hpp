@@ -3,9 +3,11 @@
 /// one: the content goes to a temporary file next to the target, which is then renamed over it (atomic on
 /// POSIX file systems).
 
+#include <cstdint>
 #include <filesystem>
 #include <sstream>
 #include <stdexcept>
+#include <string>
 #include <string_view>
 
 namespace nodus::output {
@@ -21,8 +23,17 @@ class WriteError : public std::runtime_error {
 /// Throws WriteError "cannot WHAT 'PATH': REASON", REASON from errno `error`.
 [[noreturn]] void throw_write_error(std::string_view what, const std::filesystem::path& path, int error);
 
+/// Throws WriteError "cannot write 'PATH': No space left on device (it takes N, M are free)" if the file
+/// system of `folder` says it has fewer than `bytes` bytes available; does nothing where it cannot tell.
+void require_space(const std::filesystem::path& folder, std::uintmax_t bytes,
+                   const std::filesystem::path& path);
+
+/// "12.3 MB", "456 kB", "789 bytes": a size for a message (decimal units).
+std::string human_size(std::uintmax_t bytes);
+
 /// A file being written: stream into `stream()` (held in memory), then `commit()` writes it to the temporary
-/// file and renames that onto the target. Destroyed without commit (an exception on the way), it removes the
+/// file and renames that onto the target; it first checks that the file system has room for it
+/// (require_space). Destroyed without commit (an exception on the way), it removes the
 /// temporary file and leaves the target as it was. Errors throw WriteError naming the path and the reason.
 class AtomicFile {
  public:
@@ -32,6 +43,8 @@ class AtomicFile {
   AtomicFile& operator=(const AtomicFile&) = delete;
 
   std::ostream& stream() { return buffer_; }
+  /// The bytes streamed so far.
+  std::uintmax_t size() { return static_cast<std::uintmax_t>(buffer_.tellp()); }
   const std::filesystem::path& path() const { return path_; }
   /// Writes the content, closes and renames onto the target. Throws WriteError if any of it failed.
   void commit();

@@ -24,22 +24,24 @@ struct Cell {
   int state = 0;                                     ///< ContactStatus
 };
 
-/// A CellData array with one value per cell.
-template <typename ValueOfCell>
-void cell_array(vtk_xml::ChunkedWriter& w, const char* type, const char* name, int components,
-                const std::vector<Cell>& cells, ValueOfCell value_of_cell) {
-  vtk_xml::begin_data_array(w, type, name, components);
-  for (const Cell& c : cells) {
-    value_of_cell(c);
-    w.print("\n");
-  }
-  vtk_xml::end_data_array(w);
+/// The values of one cell-data array, `value_of_cell(c, values)` appending those of cell c.
+template <typename T, typename ValueOfCell>
+std::vector<T> cell_array(const std::vector<Cell>& cells, int components, ValueOfCell value_of_cell) {
+  std::vector<T> values;
+  values.reserve(cells.size() * static_cast<std::size_t>(components));
+  for (const Cell& c : cells) value_of_cell(c, values);
+  return values;
+}
+
+void append(std::vector<double>& values, const contact::Vec3& v) {
+  values.insert(values.end(), {v.x(), v.y(), v.z()});
 }
 
 }  // namespace
 
 void write_contact_vtp(std::ostream& out, const contact::ContactGeometry& geometry,
-                       std::optional<double> time, const std::vector<simulation::ContactState>* states) {
+                       std::optional<double> time, const std::vector<simulation::ContactState>* states,
+                       VtkEncoding encoding) {
   check_contact_geometry(geometry, "contact VTK output");
   check_contact_states(geometry, states, "contact VTK output");
   const auto num_elements = static_cast<std::int64_t>(geometry.elements.size());
@@ -83,43 +85,50 @@ void write_contact_vtp(std::ostream& out, const contact::ContactGeometry& geomet
     cells.push_back(cell);
   }
 
-  vtk_xml::ChunkedWriter w(out);
-  vtk_xml::begin_polydata(w, time, {3 * num_elements, static_cast<std::int64_t>(cells.size()), 0});
-
-  w.print("      <CellData Scalars=\"kind\" Vectors=\"normal\">\n");
-  cell_array(w, "Int32", "kind", 1, cells, [&](const Cell& c) { w.print("{}", c.kind); });
-  cell_array(w, "Int32", "zone", 1, cells, [&](const Cell& c) { w.print("{}", c.zone); });
-  cell_array(w, "Int32", "beam_i", 1, cells, [&](const Cell& c) { w.print("{}", c.beam_i); });
-  cell_array(w, "Int32", "beam_j", 1, cells, [&](const Cell& c) { w.print("{}", c.beam_j); });
-  cell_array(w, "Float64", "gap", 1, cells, [&](const Cell& c) { w.print("{:.12g}", c.gap); });
-  auto print_vector = [&](const contact::Vec3& v) {
-    w.print("{:.12g} {:.12g} {:.12g}", v.x(), v.y(), v.z());
-  };
-  cell_array(w, "Float64", "normal", 3, cells, [&](const Cell& c) { print_vector(c.normal); });
-  if (states) {
-    cell_array(w, "Float64", "normal_force", 1, cells,
-               [&](const Cell& c) { w.print("{:.12g}", c.normal_force); });
-    cell_array(w, "Float64", "force", 3, cells, [&](const Cell& c) { print_vector(c.force); });
-    cell_array(w, "Float64", "tangential_force", 3, cells,
-               [&](const Cell& c) { print_vector(c.tangential); });
-    cell_array(w, "Int32", "state", 1, cells, [&](const Cell& c) { w.print("{}", c.state); });
+  std::vector<double> points;
+  points.reserve(static_cast<std::size_t>(9 * num_elements));
+  for (const contact::ContactElement& element : geometry.elements) append(points, element.intermediate);
+  for (const contact::ContactElement& element : geometry.elements) {
+    append(points, element.position_i);
+    append(points, element.position_j);
   }
-  w.print("      </CellData>\n");
 
-  vtk_xml::points(w, 3 * num_elements, [&](std::int64_t p) -> const contact::Vec3& {
-    if (p < num_elements) return geometry.elements[static_cast<std::size_t>(p)].intermediate;
-    const std::int64_t q = p - num_elements;
-    const contact::ContactElement& element = geometry.elements[static_cast<std::size_t>(q / 2)];
-    return q % 2 == 0 ? element.position_i : element.position_j;
-  });
-  vtk_xml::cells(w, "Lines", connectivity, offsets);
-  vtk_xml::end_polydata(w);
+  vtk_xml::PolyDataWriter w(out, encoding, time,
+                            {3 * num_elements, static_cast<std::int64_t>(cells.size()), 0});
+  w.open("CellData Scalars=\"kind\" Vectors=\"normal\"");
+  w.array("kind", cell_array<std::int32_t>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.kind); }));
+  w.array("zone", cell_array<std::int32_t>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.zone); }));
+  w.array("beam_i",
+          cell_array<std::int32_t>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.beam_i); }));
+  w.array("beam_j",
+          cell_array<std::int32_t>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.beam_j); }));
+  w.array("gap", cell_array<double>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.gap); }));
+  w.array("normal", cell_array<double>(cells, 3, [](const Cell& c, auto& v) { append(v, c.normal); }), 3);
+  if (states) {
+    w.array("normal_force",
+            cell_array<double>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.normal_force); }));
+    w.array("force", cell_array<double>(cells, 3, [](const Cell& c, auto& v) { append(v, c.force); }), 3);
+    w.array("tangential_force",
+            cell_array<double>(cells, 3, [](const Cell& c, auto& v) { append(v, c.tangential); }), 3);
+    w.array("state",
+            cell_array<std::int32_t>(cells, 1, [](const Cell& c, auto& v) { v.push_back(c.state); }));
+  }
+  w.close("CellData");
+  w.open("Points");
+  w.array("Points", points, 3);
+  w.close("Points");
+  w.open("Lines");
+  w.index_array("connectivity", connectivity);
+  w.index_array("offsets", offsets);
+  w.close("Lines");
+  w.finish();
 }
 
 void write_contact_vtp(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
-                       std::optional<double> time, const std::vector<simulation::ContactState>* states) {
+                       std::optional<double> time, const std::vector<simulation::ContactState>* states,
+                       VtkEncoding encoding) {
   AtomicFile file(path);
-  write_contact_vtp(file.stream(), geometry, time, states);
+  write_contact_vtp(file.stream(), geometry, time, states, encoding);
   file.commit();
 }
 

@@ -16,16 +16,17 @@
 #include <vector>
 
 #include "nodus/contact/detection.hpp"
+#include "nodus/output/vtk_encoding.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
 
 namespace nodus::output {
 
-/// Writes the VTK XML PolyData document (ASCII) of `geometry` (cells as above). Cell data, one value per
-/// cell: `kind` (Int32: 0 intermediate geometry, 1 contact element), `zone` (Int32 zone index), `beam_i`,
-/// `beam_j` (Int32 beam indices of the zone), `gap` [mm] (Float64: the element's gap; for a polyline the
-/// smallest gap of its zone), `normal` (Float64, 3 components: the element's unit normal n from I towards J;
-/// zeros for a polyline). With `states` (one simulation::ContactState per element, same order), also the
-/// contact forces of each element, zero on the polylines: `normal_force` (Float64: R_N [N]), `force`
+/// Writes the VTK XML PolyData document of `geometry` in `encoding` (vtk_xml.hpp) (cells as above). Cell
+/// data, one value per cell: `kind` (Int32: 0 intermediate geometry, 1 contact element), `zone` (Int32 zone
+/// index), `beam_i`, `beam_j` (Int32 beam indices of the zone), `gap` [mm] (Float64: the element's gap; for a
+/// polyline the smallest gap of its zone), `normal` (Float64, 3 components: the element's unit normal n from
+/// I towards J; zeros for a polyline). With `states` (one simulation::ContactState per element, same order),
+/// also the contact forces of each element, zero on the polylines: `normal_force` (Float64: R_N [N]), `force`
 /// (Float64, 3: the contact force on beam J, R_N n + T [N]; on I it is the opposite), `tangential_force`
 /// (Float64, 3: the friction force T on beam J [N]) and `state` (Int32: ContactStatus, 0 open, 1 stick,
 /// 2 slip). `time` [s], if given, is stored as the field TimeValue. A geometry without zones gives a valid
@@ -33,11 +34,13 @@ namespace nodus::output {
 /// an element's zone index is out of range, or `states` does not hold one state per element.
 void write_contact_vtp(std::ostream& out, const contact::ContactGeometry& geometry,
                        std::optional<double> time = std::nullopt,
-                       const std::vector<simulation::ContactState>* states = nullptr);
+                       const std::vector<simulation::ContactState>* states = nullptr,
+                       VtkEncoding encoding = VtkEncoding::binary);
 
 /// Same into file `path` (temporary file + rename). Throws std::runtime_error naming the path on I/O errors.
 void write_contact_vtp(const std::filesystem::path& path, const contact::ContactGeometry& geometry,
                        std::optional<double> time = std::nullopt,
-                       const std::vector<simulation::ContactState>* states = nullptr);
+                       const std::vector<simulation::ContactState>* states = nullptr,
+                       VtkEncoding encoding = VtkEncoding::binary);
 
 }  // namespace nodus::output

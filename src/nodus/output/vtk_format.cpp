@@ -13,8 +13,6 @@
 namespace nodus::output {
 namespace {
 
-using vtk_xml::ChunkedWriter;
-
 void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_sides) {
   if (x.size() != model.num_dofs())
     throw std::invalid_argument(
@@ -23,21 +21,17 @@ void check_inputs(const model::Model& model, const Eigen::VectorXd& x, int tube_
     throw std::invalid_argument(fmt::format("VTK output: tube_sides = {}, must be >= 3", tube_sides));
 }
 
-/// A point-data array with one value (or 3-vector) per node, repeated for the node's ring points.
-template <typename ValueOfNode>
-void node_array(ChunkedWriter& w, const char* type, const char* name, int components, int num_nodes,
-                int tube_sides, ValueOfNode value_of_node) {
-  vtk_xml::begin_data_array(w, type, name, components);
-  for (int n = 0; n < num_nodes; ++n) {
-    value_of_node(n);
-    w.print("\n");
-  }
+/// A point-data array with `components` values per node (value_of_node(n, values) appends them), repeated for
+/// the node's ring points: centreline points first, then the rings (TubeMesh's order).
+template <typename T, typename ValueOfNode>
+std::vector<T> node_array(int components, int num_nodes, int tube_sides, ValueOfNode value_of_node) {
+  std::vector<T> values;
+  values.reserve(static_cast<std::size_t>(num_nodes) *
+                 static_cast<std::size_t>((1 + tube_sides) * components));
+  for (int n = 0; n < num_nodes; ++n) value_of_node(n, values);
   for (int n = 0; n < num_nodes; ++n)
-    for (int j = 0; j < tube_sides; ++j) {
-      value_of_node(n);
-      w.print("\n");
-    }
-  vtk_xml::end_data_array(w);
+    for (int j = 0; j < tube_sides; ++j) value_of_node(n, values);
+  return values;
 }
 
 }  // namespace
@@ -91,7 +85,7 @@ TubeMesh tube_mesh(const model::Model& model, const Eigen::VectorXd& x, int tube
 }
 
 void write_vtp(std::ostream& out, const model::Model& model, const Eigen::VectorXd& x, int tube_sides,
-               std::optional<double> time) {
+               std::optional<double> time, VtkEncoding encoding) {
   const TubeMesh mesh = tube_mesh(model, x, tube_sides);
   const auto strains = model.node_strains(x);
   const int num_nodes = model.num_nodes();
@@ -100,40 +94,54 @@ void write_vtp(std::ostream& out, const model::Model& model, const Eigen::Vector
     for (int i = 0; i < model.beam(b).num_nodes(); ++i)
       beam_of_node[static_cast<std::size_t>(model.beam(b).node(i))] = b;
 
-  ChunkedWriter w(out);
-  vtk_xml::begin_polydata(w, time,
-                          {mesh.points.cols(), static_cast<std::int64_t>(mesh.line_offsets.size()),
-                           static_cast<std::int64_t>(mesh.poly_offsets.size())});
-
-  w.print("      <PointData Scalars=\"beam\" Vectors=\"displacement\">\n");
-  node_array(w, "Int32", "beam", 1, num_nodes, tube_sides,
-             [&](int n) { w.print("{}", beam_of_node[static_cast<std::size_t>(n)]); });
-  node_array(w, "Int32", "node", 1, num_nodes, tube_sides, [&](int n) { w.print("{}", n); });
+  vtk_xml::PolyDataWriter w(out, encoding, time,
+                            {mesh.points.cols(), static_cast<std::int64_t>(mesh.line_offsets.size()),
+                             static_cast<std::int64_t>(mesh.poly_offsets.size())});
+  w.open("PointData Scalars=\"beam\" Vectors=\"displacement\"");
+  w.array("beam", node_array<std::int32_t>(1, num_nodes, tube_sides, [&](int n, auto& v) {
+            v.push_back(beam_of_node[static_cast<std::size_t>(n)]);
+          }));
+  w.array("node", node_array<std::int32_t>(1, num_nodes, tube_sides, [](int n, auto& v) { v.push_back(n); }));
   const Eigen::VectorXd& ref = model.reference();
-  node_array(w, "Float64", "displacement", 3, num_nodes, tube_sides, [&](int n) {
-    const Eigen::Index f = model.node_dof(n);
-    w.print("{:.12g} {:.12g} {:.12g}", x[f] - ref[f], x[f + 1] - ref[f + 1], x[f + 2] - ref[f + 2]);
-  });
+  w.array("displacement",
+          node_array<double>(3, num_nodes, tube_sides,
+                             [&](int n, auto& v) {
+                               const Eigen::Index f = model.node_dof(n);
+                               for (int c = 0; c < 3; ++c) v.push_back(x[f + c] - ref[f + c]);
+                             }),
+          3);
   for (int d = 0; d < 2; ++d)
-    node_array(w, "Float64", d == 0 ? "g1" : "g2", 3, num_nodes, tube_sides, [&](int n) {
-      const Eigen::Index f = model.node_dof(n) + 3 + 3 * d;
-      w.print("{:.12g} {:.12g} {:.12g}", x[f], x[f + 1], x[f + 2]);
-    });
+    w.array(d == 0 ? "g1" : "g2",
+            node_array<double>(3, num_nodes, tube_sides,
+                               [&](int n, auto& v) {
+                                 const Eigen::Index f = model.node_dof(n) + 3 + 3 * d;
+                                 for (int c = 0; c < 3; ++c) v.push_back(x[f + c]);
+                               }),
+            3);
   for (int k = 0; k < beam::kNumStrains; ++k)
-    node_array(w, "Float64", beam::strain_name(k), 1, num_nodes, tube_sides,
-               [&](int n) { w.print("{:.12g}", strains(k, n)); });
-  w.print("      </PointData>\n");
+    w.array(beam::strain_name(k), node_array<double>(1, num_nodes, tube_sides,
+                                                     [&](int n, auto& v) { v.push_back(strains(k, n)); }));
+  w.close("PointData");
 
-  vtk_xml::points(w, mesh.points.cols(), [&](std::int64_t p) { return mesh.points.col(p); });
-  vtk_xml::cells(w, "Lines", mesh.line_connectivity, mesh.line_offsets);
-  vtk_xml::cells(w, "Polys", mesh.poly_connectivity, mesh.poly_offsets);
-  vtk_xml::end_polydata(w);
+  w.open("Points");
+  w.array("Points", std::span<const double>(mesh.points.data(), static_cast<std::size_t>(mesh.points.size())),
+          3);
+  w.close("Points");
+  w.open("Lines");
+  w.index_array("connectivity", mesh.line_connectivity);
+  w.index_array("offsets", mesh.line_offsets);
+  w.close("Lines");
+  w.open("Polys");
+  w.index_array("connectivity", mesh.poly_connectivity);
+  w.index_array("offsets", mesh.poly_offsets);
+  w.close("Polys");
+  w.finish();
 }
 
 void write_vtp(const std::filesystem::path& path, const model::Model& model, const Eigen::VectorXd& x,
-               int tube_sides, std::optional<double> time) {
+               int tube_sides, std::optional<double> time, VtkEncoding encoding) {
   AtomicFile file(path);
-  write_vtp(file.stream(), model, x, tube_sides, time);
+  write_vtp(file.stream(), model, x, tube_sides, time, encoding);
   file.commit();
 }
 

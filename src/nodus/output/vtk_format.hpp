@@ -17,6 +17,7 @@
 #include <Eigen/Core>
 
 #include "nodus/model/model.hpp"
+#include "nodus/output/vtk_encoding.hpp"
 
 namespace nodus::output {
 
@@ -39,17 +40,18 @@ inline std::int64_t ring_point_index(int num_nodes, int tube_sides, int node, in
 /// fit the model or tube_sides < 3.
 TubeMesh tube_mesh(const model::Model& model, const Eigen::VectorXd& x, int tube_sides);
 
-/// Writes the VTK XML PolyData document (ASCII) of state `x`: the points and cells of tube_mesh, and per
-/// point (ring points take their node's values) the arrays `beam` (Int32 beam index), `node` (Int32 global
-/// node), `displacement` (centre displacement from the reference [mm]), `g1`, `g2` (directors [-]) and one
-/// Float64 array per strain measure named by beam::strain_name (model.node_strains). `time` [s], if given, is
-/// stored as the field TimeValue.
+/// Writes the VTK XML PolyData document of state `x` in `encoding` (vtk_xml.hpp): the points and cells of
+/// tube_mesh, and per point (ring points take their node's values) the arrays `beam` (Int32 beam index),
+/// `node` (Int32 global node), `displacement` (centre displacement from the reference [mm]), `g1`, `g2`
+/// (directors [-]) and one Float64 array per strain measure named by beam::strain_name (model.node_strains).
+/// `time` [s], if given, is stored as the field TimeValue.
 void write_vtp(std::ostream& out, const model::Model& model, const Eigen::VectorXd& x, int tube_sides,
-               std::optional<double> time = std::nullopt);
+               std::optional<double> time = std::nullopt, VtkEncoding encoding = VtkEncoding::binary);
 
 /// Same into file `path` (temporary file + rename). Throws std::runtime_error naming the path on I/O errors.
 void write_vtp(const std::filesystem::path& path, const model::Model& model, const Eigen::VectorXd& x,
-               int tube_sides, std::optional<double> time = std::nullopt);
+               int tube_sides, std::optional<double> time = std::nullopt,
+               VtkEncoding encoding = VtkEncoding::binary);
 
 /// One file of a ParaView collection.
 struct PvdEntry {

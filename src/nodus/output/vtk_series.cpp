@@ -34,8 +34,8 @@ void VtkSeries::Collection::clear() {
   entries.clear();
 }
 
-VtkSeries::VtkSeries(std::filesystem::path dir, int tube_sides)
-    : dir_(std::move(dir)), tube_sides_(tube_sides) {
+VtkSeries::VtkSeries(std::filesystem::path dir, int tube_sides, VtkEncoding encoding)
+    : dir_(std::move(dir)), tube_sides_(tube_sides), encoding_(encoding) {
   if (tube_sides_ < 3)
     throw std::invalid_argument(fmt::format("VTK output: tube_sides = {}, must be >= 3", tube_sides_));
 }
@@ -144,12 +144,22 @@ void VtkSeries::write(int step, double time, const model::Model& model, const Ei
                       const std::vector<simulation::ContactState>* states) {
   if (!begun_) begin(contact != nullptr);
   const std::string name = file_name(step);
-  write_vtp(dir_ / "vtk" / name, model, x, tube_sides_, time);
+  AtomicFile beams(dir_ / "vtk" / name);
+  write_vtp(beams.stream(), model, x, tube_sides_, time, encoding_);
+  std::optional<AtomicFile> contacts;
+  std::string contact_name;
+  if (contact) {
+    contact_name = contact_file_name(step);
+    contacts.emplace(dir_ / "vtk" / contact_name);
+    write_contact_vtp(contacts->stream(), *contact, time, states, encoding_);
+  }
+  last_bytes_ = beams.size() + (contacts ? contacts->size() : 0);
+  require_space(dir_ / "vtk", last_bytes_, beams.path());
+  beams.commit();
   beams_.add(step, time, "vtk/" + name);
   write_pvd(pvd_path(), beams_.entries);
-  if (contact) {
-    const std::string contact_name = contact_file_name(step);
-    write_contact_vtp(dir_ / "vtk" / contact_name, *contact, time, states);
+  if (contacts) {
+    contacts->commit();
     contact_.add(step, time, "vtk/" + contact_name);
     write_pvd(contact_pvd_path(), contact_.entries);
   }

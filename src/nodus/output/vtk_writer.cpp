@@ -3,13 +3,15 @@
 #include <stdexcept>
 
 #include <fmt/format.h>
+#include <spdlog/spdlog.h>
 
+#include "nodus/output/atomic_file.hpp"
 #include "nodus/output/contact_table.hpp"
 
 namespace nodus::output {
 
-VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, int every, int tube_sides)
-    : series_(dir, tube_sides), contact_tables_(dir), every_(every) {
+VtkSeriesWriter::VtkSeriesWriter(std::filesystem::path dir, int every, int tube_sides, VtkEncoding encoding)
+    : series_(dir, tube_sides, encoding), contact_tables_(dir), every_(every) {
   if (every_ < 0) throw std::invalid_argument(fmt::format("VTK output: every = {}, must be >= 0", every_));
 }
 
@@ -31,6 +33,26 @@ void VtkSeriesWriter::on_start(const simulation::Simulation& sim) {
   series_.begin(sim.contact() != nullptr);
   contact_tables_.begin();
   write(sim, last_step_, sim.time());
+  warn_if_short_of_space(sim);
+}
+
+void VtkSeriesWriter::warn_if_short_of_space(const simulation::Simulation& sim) const {
+  std::uintmax_t steps = 0;
+  for (const scenario::StageSpec& stage : sim.scenario().stages)
+    steps += static_cast<std::uintmax_t>(stage.steps);
+  const auto every = static_cast<std::uintmax_t>(every_);
+  const std::uintmax_t due = every > 0 ? (steps + every - 1) / every : 1;
+  const std::uintmax_t bytes = due * series_.last_bytes();
+  std::error_code error;
+  const std::filesystem::space_info space = std::filesystem::space(series_.dir(), error);
+  if (error || space.available >= bytes) return;
+  spdlog::warn(
+      "the pictures of this run may not fit on its disk: {} more VTK outputs of {} each at least ({}), {} "
+      "free in '{}'; the run will stop where the disk is full and can then be resumed (output.vtk_every sets "
+      "how often "
+      "they are written)",
+      due, human_size(series_.last_bytes()), human_size(bytes), human_size(space.available),
+      series_.dir().string());
 }
 
 void VtkSeriesWriter::on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) {

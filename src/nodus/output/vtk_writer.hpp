@@ -19,9 +19,12 @@ class VtkSeriesWriter : public simulation::StepObserver {
  public:
   /// `dir`: output folder (files go to DIR/vtk/, DIR/result.pvd, DIR/contact.pvd and DIR/contact/); `every`:
   /// write every N-th converged step (0: only the initial and the final state), >= 0; `tube_sides`: facets
-  /// around each tube, >= 3. Throws std::invalid_argument on bad settings. Whether the contact tables are
-  /// written is read from the scenario (output.contact_csv) when the run starts.
-  VtkSeriesWriter(std::filesystem::path dir, int every, int tube_sides);
+  /// around each tube, >= 3; `encoding`: of the VTK files. Throws std::invalid_argument on bad settings.
+  /// Whether the contact tables are written is read from the scenario (output.contact_csv) when the run
+  /// starts. A run that starts afresh writes its initial picture, then warns if the free space of the disk
+  /// is less than that picture's size times the pictures its stages' nominal steps will write.
+  VtkSeriesWriter(std::filesystem::path dir, int every, int tube_sides,
+                  VtkEncoding encoding = VtkEncoding::binary);
 
   void on_start(const simulation::Simulation& sim) override;
   void on_step(const simulation::Simulation& sim, const simulation::StepRecord& record) override;
@@ -33,6 +36,8 @@ class VtkSeriesWriter : public simulation::StepObserver {
  private:
   /// The files of output step `step` (load time `time` [s]) from the current state of `sim`.
   void write(const simulation::Simulation& sim, int step, double time);
+  /// The warning of a run whose pictures will not fit on the disk (see the constructor).
+  void warn_if_short_of_space(const simulation::Simulation& sim) const;
 
   VtkSeries series_;
   ContactCsvSeries contact_tables_;

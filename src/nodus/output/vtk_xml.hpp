@@ -1,15 +1,25 @@
 #pragma once
-/// Building blocks shared by the VTK XML PolyData writers (vtk_format.hpp for the beams, contact_vtk.hpp for
-/// the contact geometry): a buffered formatter and the pieces of the document that do not depend on what is
-/// drawn. Internal to the output module.
+/// The writer of a VTK XML PolyData document, shared by the beams' pictures (vtk_format.hpp) and the contact
+/// geometry's (contact_vtk.hpp): the document's frame and its data arrays, in either encoding of
+/// vtk_encoding.hpp. Internal to the output module.
+///
+/// Binary documents are those ParaView writes by default: every DataArray is `format="appended"`, its bytes
+/// (little-endian) cut into blocks of 32 KiB, each compressed by zlib, and stored after the XML in
+/// <AppendedData encoding="raw">, behind a header of UInt64 words [number of blocks, block size, size of the
+/// last block if partial (else 0), compressed size of each block] (VTKFile attributes header_type="UInt64",
+/// compressor="vtkZLibDataCompressor"). The field TimeValue stays ASCII in both encodings.
 
 #include <cstdint>
 #include <optional>
 #include <ostream>
+#include <span>
+#include <string>
+#include <string_view>
 #include <utility>
-#include <vector>
 
 #include <fmt/format.h>
+
+#include "nodus/output/vtk_encoding.hpp"
 
 namespace nodus::output::vtk_xml {
 
@@ -25,6 +35,10 @@ class ChunkedWriter {
   void print(fmt::format_string<Args...> format, Args&&... args) {
     fmt::format_to(std::back_inserter(buffer_), format, std::forward<Args>(args)...);
     if (buffer_.size() > (1u << 20)) flush();
+  }
+  void write(std::string_view bytes) {
+    flush();
+    out_.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
   }
   void flush() {
     out_.write(buffer_.data(), static_cast<std::streamsize>(buffer_.size()));
@@ -43,37 +57,47 @@ struct PieceCounts {
   std::int64_t polys = 0;
 };
 
-/// The XML declaration, <VTKFile type="PolyData">, <PolyData>, the field TimeValue [s] if `time` is given,
-/// and the opening <Piece> tag with `counts` (no vertices, no strips).
-void begin_polydata(ChunkedWriter& w, std::optional<double> time, const PieceCounts& counts);
+/// Block size of the compressed arrays [bytes] (VTK's default).
+inline constexpr std::size_t kBlockSize = 32768;
 
-/// Closes what begin_polydata opened.
-void end_polydata(ChunkedWriter& w);
+/// One PolyData document with one piece, written in order: the constructor writes the frame up to the piece's
+/// opening tag; then sections (open/close) and their arrays; finish() closes the document. The ASCII layout:
+/// one tuple a line, cell indices sixteen a line.
+class PolyDataWriter {
+ public:
+  /// `time` [s], if given, is stored as the field TimeValue.
+  PolyDataWriter(std::ostream& out, VtkEncoding encoding, std::optional<double> time,
+                 const PieceCounts& counts);
+  PolyDataWriter(const PolyDataWriter&) = delete;
+  PolyDataWriter& operator=(const PolyDataWriter&) = delete;
 
-/// Opens a DataArray of `type` (Int32, Int64, Float64) named `name` with `components` values per tuple.
-void begin_data_array(ChunkedWriter& w, const char* type, const char* name, int components = 1);
+  /// Opens a section of the piece: `tag` is its name and attributes as written ("PointData Scalars=\"beam\"",
+  /// "Points", "Lines").
+  void open(std::string_view tag);
+  /// Closes the section named `name`.
+  void close(std::string_view name);
 
-/// Closes a DataArray.
-void end_data_array(ChunkedWriter& w);
+  /// A DataArray named `name` of `values`, `components` values per tuple.
+  void array(const char* name, std::span<const std::int32_t> values, int components = 1);
+  void array(const char* name, std::span<const double> values, int components = 1);
+  /// An Int64 DataArray of cell indices (connectivity, offsets).
+  void index_array(const char* name, std::span<const std::int64_t> values);
 
-/// A whole Int64 DataArray named `name` (cell connectivity or offsets), sixteen values per line.
-void index_array(ChunkedWriter& w, const char* name, const std::vector<std::int64_t>& values);
+  /// Closes the piece and the document (with the appended data of a binary one).
+  void finish();
 
-/// The <Points> element with `count` points; point_of(p) gives point p (indexable by 0, 1, 2) [mm].
-template <typename PointOf>
-void points(ChunkedWriter& w, std::int64_t count, PointOf point_of) {
-  w.print("      <Points>\n");
-  w.print("        <DataArray type=\"Float64\" Name=\"Points\" NumberOfComponents=\"3\" format=\"ascii\">\n");
-  for (std::int64_t p = 0; p < count; ++p) {
-    const auto q = point_of(p);
-    w.print("{:.12g} {:.12g} {:.12g}\n", q[0], q[1], q[2]);
-  }
-  w.print("        </DataArray>\n");
-  w.print("      </Points>\n");
-}
+ private:
+  template <typename T>
+  void write_array(const char* type, const char* name, std::span<const T> values, int components,
+                   int per_line);
 
-/// A <Lines> or <Polys> element (`kind`) with its connectivity and offsets arrays.
-void cells(ChunkedWriter& w, const char* kind, const std::vector<std::int64_t>& connectivity,
-           const std::vector<std::int64_t>& offsets);
+  ChunkedWriter text_;
+  VtkEncoding encoding_;
+  std::string appended_;  ///< the appended data of a binary document, written by finish()
+};
+
+/// The bytes of `size` bytes at `data` as an appended array of a binary document: the header and the
+/// compressed blocks described above.
+std::string compressed_array(const void* data, std::size_t size);
 
 }  // namespace nodus::output::vtk_xml

@@ -8,7 +8,7 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenari
                        bool write_summary, std::string label, const std::filesystem::path& timing)
     : steps_(dir),
       timing_(dir),
-      vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides),
+      vtk_(dir, scenario.output.vtk_every, scenario.output.tube_sides, scenario.output.vtk_format),
       final_nodes_(dir),
       contact_tables_(dir),
       stage_ends_(dir),

@@ -17,6 +17,7 @@
 
 #include "nodus/model/rotation_vector.hpp"
 #include "nodus/model/yarn_layout.hpp"
+#include "nodus/output/vtk_encoding.hpp"
 #include "nodus/scenario/key.hpp"
 #include "nodus/solver/load_stepping.hpp"
 #include "nodus/solver/newton.hpp"
@@ -615,8 +616,9 @@ inline LinearSolverKind stage_linear_solver(const StageSpec& stage, const Solver
 }
 
 struct OutputSettings {
-  int vtk_every = 1;              ///< write a VTK file every N converged steps (0: only the final state)
-  int tube_sides = 12;            ///< facets around each tube in the VTK output, >= 3
+  int vtk_every = 1;    ///< write a VTK file every N converged steps (0: only the final state)
+  int tube_sides = 12;  ///< facets around each tube in the VTK output, >= 3
+  output::VtkEncoding vtk_format = output::VtkEncoding::binary;  ///< how the VTK files store their arrays
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
   bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
@@ -632,6 +634,12 @@ inline std::span<const Key<OutputSettings>> OutputSettings::keys() {
                "write a VTK file every N converged steps; 0: the final state only"),
       K::whole("output.tube_sides", &OutputSettings::tube_sides, ">= 3", ranges::at_least_three,
                "facets around each tube in the VTK output"),
+      K::choice(
+          "output.vtk_format", "binary | ascii",
+          [](const OutputSettings& o) { return static_cast<int>(o.vtk_format); },
+          [](OutputSettings& o, int i) { o.vtk_format = static_cast<output::VtkEncoding>(i); },
+          "how the VTK files store their arrays. binary: compressed by zlib and appended, as ParaView "
+          "writes them; ascii: as text, about ten times larger (docs/output.md)"),
       K::real("output.progress_seconds", &OutputSettings::progress_seconds, "s", ">= 0", ranges::non_negative,
               "minimum interval between progress lines on stderr"),
       K::flag("output.contact_csv", &OutputSettings::contact_csv,
