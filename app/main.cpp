@@ -6,7 +6,8 @@
 //                                         continue an interrupted run from its newest checkpoint in DIR
 //   mpirun -n N nodus run SCENARIO.yaml --out DIR [-ksp_view ...]
 //                                         the same on N MPI ranks (solver.linear_solver: petsc; PETSc's own
-//                                         -ksp_*, -pc_*, -mat_* options go to PETSc; docs/parallel.md)
+//                                         -ksp_*, -pc_*, -mat_*, -mg_*, -sub_* options go to PETSc;
+//                                         docs/parallel.md)
 //   nodus check SCENARIO.yaml             validate a scenario and print the resolved settings
 //   nodus keys                            print the table of scenario keys (markdown)
 //   nodus knot NODES.csv                  knot type and smallest self-distance of a beam in a nodal table
@@ -341,9 +342,9 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
 int main(int argc, char** argv) {
   const bool passive_wait_set_here = prefer_passive_openmp_wait(argv);
   nodus::output::use_stderr_logger();
-  // PETSc's own options (-ksp_*, -pc_*, -mat_*) go to PETSc, the rest to nodus's command line. MPI and PETSc
-  // start here when an MPI launcher started this process or PETSc options were given, else only if a solver
-  // needs them (one process).
+  // PETSc's own options (-ksp_*, -pc_*, -mat_*, -mg_*, -sub_*) go to PETSc, the rest to nodus's command line.
+  // MPI and PETSc start here when an MPI launcher started this process or PETSc options were given, else only
+  // if a solver needs them (one process).
   const nodus::parallel::SplitArguments split = nodus::parallel::split_petsc_options(argc, argv);
   try {
     if (nodus::parallel::launched_by_mpi() || !split.petsc.empty()) nodus::parallel::initialize(split.petsc);

@@ -28,10 +28,15 @@ TEST(SplitPetscOptions, GivesPetscItsOptionsWithTheirValuesAndKeepsTheRestInOrde
                         "-q",
                         "-mat_mumps_cntl_1",
                         "-0.5",
+                        "-mg_levels_pc_type",
+                        "pbjacobi",
+                        "-sub_pc_type",
+                        "icc",
                         "-log_view"};
   const auto split = split_petsc_options(static_cast<int>(std::size(argv)), argv);
   EXPECT_EQ(split.petsc, words({"-ksp_view", "-pc_factor_mat_solver_type", "superlu_dist",
-                                "-mat_mumps_icntl_14", "50", "-mat_mumps_cntl_1", "-0.5", "-log_view"}));
+                                "-mat_mumps_icntl_14", "50", "-mat_mumps_cntl_1", "-0.5",
+                                "-mg_levels_pc_type", "pbjacobi", "-sub_pc_type", "icc", "-log_view"}));
   EXPECT_EQ(split.rest, words({"nodus", "run", "k.yaml", "--out", "dir", "-q"}));
 }
 

@@ -19,8 +19,11 @@ extern char** environ;
 namespace nodus::parallel {
 namespace {
 
+/// The prefixes of PETSc's options for the linear solve: the Krylov method, the preconditioner, the matrix,
+/// the options files, and the inner solvers of multigrid levels (-mg_levels_, -mg_coarse_) and of block
+/// preconditioners (-sub_).
 bool is_petsc_option(std::string_view arg) {
-  for (std::string_view prefix : {"-ksp_", "-pc_", "-mat_", "-options_"})
+  for (std::string_view prefix : {"-ksp_", "-pc_", "-mat_", "-options_", "-mg_", "-sub_"})
     if (arg.starts_with(prefix) && arg.size() > prefix.size()) return true;
   return arg == "-log_view" || arg.starts_with("-log_view:");
 }
