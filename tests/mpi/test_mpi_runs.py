@@ -12,7 +12,8 @@ factor) against that policy in one process; LU by SuperLU_dist from the scenario
 from the command line over them (PETSc's -ksp_view says which factorised), against the serial run; bad input
 is reported once with exit status 2 on every rank and nothing written; a run stopped after 7 steps and resumed
 ends with the files of the run never stopped, byte for byte, and so does a longer run killed (SIGKILL) after
-60 steps and resumed. Needs the nodus Python module (PYTHONPATH) to rewrite the scenarios.
+60 steps and resumed, and the same run stopped by SIGTERM to mpirun (which must say so) and resumed. Needs the
+nodus Python module (PYTHONPATH) to rewrite the scenarios.
 """
 import json
 import os
@@ -74,6 +75,20 @@ def with_solver(source, target, **solver):
 
 def with_petsc(source, target):
     with_solver(source, target, linear_solver="petsc")
+
+
+def start_and_wait_for_steps(launcher, args, folder, steps):
+    """Starts `nodus ARGS` on 2 ranks in a session of its own (stderr kept, text) and waits until FOLDER's
+    steps.csv has `steps` rows, the run ends, or 300 s pass. Returns the process and the rows seen."""
+    command, env = mpirun_command(launcher, 2, args)
+    process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.PIPE, text=True,
+                               start_new_session=True)
+    deadline, seen = time.monotonic() + 300, 0
+    while process.poll() is None and seen < steps and time.monotonic() < deadline:
+        time.sleep(0.05)
+        if (folder / "steps.csv").exists():
+            seen = (folder / "steps.csv").read_text().count("\n") - 1
+    return process, seen
 
 
 def wait_for_no_process_with(text, deadline):
@@ -229,18 +244,12 @@ def main():
         failures.append(f"long tool_drag on 2 ranks: exit status {r.returncode}: {r.stderr[-500:]}")
     else:
         shutil.rmtree(killed, ignore_errors=True)  # a steps.csv of an earlier run would be read as progress
-        command, env = mpirun_command(launcher, 2, [exe, "run", str(long_drag), "--out", str(killed), "--quiet"])
-        process = subprocess.Popen(command, env=env, stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL,
-                                   start_new_session=True)
-        deadline, steps = time.monotonic() + 300, 0
-        while process.poll() is None and steps < 60 and time.monotonic() < deadline:
-            time.sleep(0.05)
-            if (killed / "steps.csv").exists():
-                steps = (killed / "steps.csv").read_text().count("\n") - 1
+        process, steps = start_and_wait_for_steps(launcher, [exe, "run", str(long_drag), "--out", str(killed),
+                                                             "--quiet"], killed, 60)
         finished = process.poll() is not None
         if not finished:
             os.killpg(process.pid, signal.SIGKILL)
-        process.wait()
+        process.communicate()
         # The ranks outlive mpirun by a moment (they are not in its process group): until they end, the folder
         # is theirs, and a resume into it is refused (one run at a time in a folder).
         wait_for_no_process_with(str(killed), deadline=time.monotonic() + 60)
@@ -255,6 +264,32 @@ def main():
                 print(f"killed and resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
                 if not same:
                     failures.append(f"killed and resumed on 2 ranks: {f} differs from the run never stopped")
+
+        # Stopped by SIGTERM to mpirun mid-run (as a scheduler at the end of a job's time): every rank stops at
+        # the same Newton iteration, the last converged state is saved and said, and the run resumed on 2 ranks
+        # ends with the files of the run never stopped.
+        stopped = work / "tool_drag_long_stopped"
+        shutil.rmtree(stopped, ignore_errors=True)
+        process, steps = start_and_wait_for_steps(launcher, [exe, "run", str(long_drag), "--out", str(stopped),
+                                                             "--quiet"], stopped, 60)
+        finished = process.poll() is not None
+        if not finished:
+            process.send_signal(signal.SIGTERM)
+        _, err = process.communicate(timeout=120)
+        wait_for_no_process_with(str(stopped), deadline=time.monotonic() + 60)
+        said = "run stopped by SIGTERM at step" in err and "continue it with --resume" in err
+        r = mpirun(launcher, 2, [exe, "run", str(long_drag), "--out", str(stopped), "--quiet", "--resume"])
+        print(f"SIGTERM to mpirun after {steps} steps (of 320): said {said}; resumed: exit status {r.returncode}")
+        if finished or not said or r.returncode != 0:
+            failures.append(f"SIGTERM and resume on 2 ranks: finished {finished}, stderr {err[-500:]!r}, "
+                            f"resume status {r.returncode}: {r.stderr[-500:]}")
+        else:
+            for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
+                same = (whole / f).read_bytes() == (stopped / f).read_bytes()
+                print(f"stopped by SIGTERM and resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
+                if not same:
+                    failures.append(f"stopped by SIGTERM and resumed on 2 ranks: {f} differs from the run never "
+                                    f"stopped")
 
     for f in failures:
         print("FAIL:", f)

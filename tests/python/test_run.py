@@ -1,5 +1,9 @@
 """4. nodus.run against `nodus run`: the same files, byte for byte (summary.json without its wall times, the
-checkpoints by name), with branches one at a time and side by side, and stopped then resumed."""
+checkpoints by name), with branches one at a time and side by side, and stopped then resumed; and the folder
+lock they share."""
+
+import subprocess
+import time
 
 import pytest
 
@@ -74,3 +78,31 @@ def test_run_of_a_dict_gives_the_files_of_its_yaml(tmp_path):
                     [line.rsplit(",", 1)[0] for line in (reference / name).read_text().splitlines()]), name
         elif name.endswith(".csv") or name.endswith(".vtp") or name.endswith(".pvd"):
             assert (out / name).read_bytes() == (reference / name).read_bytes(), name
+
+
+def test_a_folder_another_run_is_writing_into_is_refused(tmp_path, nodus_binary):
+    """nodus.run takes the folder's lock as `nodus run` does: while a command-line run writes into a folder,
+    nodus.run into it raises ScenarioError naming the folder and that process, and writes nothing there."""
+    data = nodus.Scenario.from_yaml(EXAMPLES / "tool_drag.yaml").to_dict()
+    for stage in data["stages"]:
+        stage["steps"] *= 100  # a run of tens of seconds
+    data.setdefault("output", {}).update(vtk_every=0)
+    scenario = tmp_path / "long_drag.yaml"
+    nodus.Scenario(data).to_yaml(scenario)
+    out = tmp_path / "out"
+    other = subprocess.Popen([str(nodus_binary), "run", str(scenario), "--out", str(out), "--quiet"])
+    try:
+        deadline = time.monotonic() + 60
+        while not (out / "steps.csv").exists() and time.monotonic() < deadline:
+            time.sleep(0.05)
+        assert other.poll() is None, "the command-line run ended before the test could try its folder"
+        rows = (out / "steps.csv").read_text()
+        with pytest.raises(nodus.ScenarioError) as refused:
+            nodus.run(str(scenario), out, quiet=True)
+        message = str(refused.value)
+        assert "--out: expected a folder no other run is writing into" in message, message
+        assert f"process {other.pid} is writing into" in message, message
+        assert other.poll() is None and (out / "steps.csv").read_text().startswith(rows)
+    finally:
+        other.kill()
+        other.wait()
