@@ -15,6 +15,7 @@
 
 #include <Eigen/Core>
 
+#include "nodus/contact/detection_parameters.hpp"
 #include "nodus/model/rotation_vector.hpp"
 #include "nodus/model/yarn_layout.hpp"
 #include "nodus/output/vtk_encoding.hpp"
@@ -667,11 +668,8 @@ enum class NormalUpdates {
   linearized,     ///< the normals are functions of the state, linearised in the tangent (not symmetric)
 };
 
-/// Which two sections each contact element pairs (contact.section_pairing; docs/contact.md).
-enum class SectionPairing {
-  plane,     ///< the paper's plane cut normal to the intermediate geometry (Eq. 33-36)
-  bisector,  ///< the sections whose centre line is normal to their mean tangent, on the line of zeta
-};
+/// Which two sections each contact element pairs (contact.section_pairing): the detection's own choice.
+using contact::SectionPairing;
 
 /// A friction coefficient for the contacts between some beams (contact.friction_pairs): those between a
 /// beam of `beams` and a beam of `with` (any beam, one of `beams` included, if `with` is empty).

@@ -161,8 +161,7 @@ contact::DetectionParameters resolve_detection(const scenario::Scenario& s, cons
   const scenario::ContactSettings& c = s.contact;
   contact::DetectionParameters given{c.proximity_distance, c.separation_distance, c.test_point_spacing,
                                      c.matching_length,    c.element_spacing,     c.self_contact};
-  given.pairing = c.section_pairing == scenario::SectionPairing::bisector ? contact::SectionPairing::bisector
-                                                                          : contact::SectionPairing::plane;
+  given.pairing = c.section_pairing;
   try {
     return contact::resolve_parameters(given, model, c.beams);
   } catch (const std::invalid_argument& e) {
