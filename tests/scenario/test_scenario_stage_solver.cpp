@@ -56,20 +56,19 @@ TEST(StageLinearSolver, ReadInStagesAndBranchesAndFallingBackToTheSolverSection)
   const Scenario s = parse_scenario(
       text("    linear_solver: klu", "        linear_solver: mumps", "solver: {linear_solver: umfpack}\n"),
       "s.yaml");
-  EXPECT_EQ(s.stages[0].linear_solver, StageLinearSolver::solver);
+  EXPECT_EQ(s.stages[0].linear_solver, std::nullopt);
   EXPECT_EQ(stage_linear_solver(s.stages[0], s.solver), LinearSolverKind::umfpack);
-  EXPECT_EQ(s.stages[1].linear_solver, StageLinearSolver::klu);
+  EXPECT_EQ(s.stages[1].linear_solver, LinearSolverKind::klu);
   EXPECT_EQ(stage_linear_solver(s.stages[1], s.solver), LinearSolverKind::klu);
   ASSERT_EQ(s.branches.size(), 1U);
   EXPECT_EQ(stage_linear_solver(s.branches[0].stages[0], s.solver), LinearSolverKind::mumps);
-  // Each choice maps to the LinearSolverKind of the same name.
-  StageSpec stage;
-  for (const auto& [own, kind] : {std::pair{StageLinearSolver::cholmod, LinearSolverKind::cholmod},
-                                  std::pair{StageLinearSolver::umfpack, LinearSolverKind::umfpack},
-                                  std::pair{StageLinearSolver::mumps, LinearSolverKind::mumps},
-                                  std::pair{StageLinearSolver::klu, LinearSolverKind::klu}}) {
-    stage.linear_solver = own;
-    EXPECT_EQ(stage_linear_solver(stage, s.solver), kind);
+  // Each name of the file reads as the LinearSolverKind of that name.
+  for (const auto& [name, kind] :
+       {std::pair{"cholmod", LinearSolverKind::cholmod}, std::pair{"umfpack", LinearSolverKind::umfpack},
+        std::pair{"mumps", LinearSolverKind::mumps}, std::pair{"klu", LinearSolverKind::klu}}) {
+    const Scenario read = parse_scenario(
+        text(std::string("    linear_solver: ") + name, "", "solver: {linear_solver: umfpack}\n"), "s.yaml");
+    EXPECT_EQ(stage_linear_solver(read.stages[1], read.solver), kind) << name;
   }
   // "solver" is the default, written or not.
   const Scenario same =
@@ -94,7 +93,7 @@ TEST(StageLinearSolver, CholmodIsRefusedWhereTheTangentIsNotSymmetric) {
   EXPECT_EQ(stage_linear_solver(frozen.stages[1], frozen.solver), LinearSolverKind::cholmod);
   // validate(): the same message, without the line.
   Scenario built = parse_scenario(text("", "", varying), "s.yaml");
-  built.stages[1].linear_solver = StageLinearSolver::cholmod;
+  built.stages[1].linear_solver = LinearSolverKind::cholmod;
   try {
     validate(built);
     ADD_FAILURE() << "validate() accepted cholmod with the varying tangent";

@@ -43,7 +43,7 @@ inline scenario::Scenario with_verification_solver(scenario::Scenario s) {
     throw std::invalid_argument("NODUS_VERIFICATION_SOLVER: expected " + std::string(key->range) + ", got " +
                                 name);
   key->set_choice(s.solver, static_cast<int>(choice - choices.begin()));
-  for (scenario::StageSpec& stage : s.stages) stage.linear_solver = scenario::StageLinearSolver::solver;
+  for (scenario::StageSpec& stage : s.stages) stage.linear_solver.reset();
   return s;
 }
 

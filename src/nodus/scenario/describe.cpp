@@ -103,7 +103,7 @@ void describe_stages(std::string& out, const Scenario& scenario, const std::vect
       // The drag's keys only where there is a drag, a stage's own line search, linear solver and particles
       // only where it has them.
       if (key.path == "stages[].line_search") return stage.line_search == StageSwitch::solver;
-      if (key.path == "stages[].linear_solver") return stage.linear_solver == StageLinearSolver::solver;
+      if (key.path == "stages[].linear_solver") return !stage.linear_solver;
       if (key.path == "stages[].particles") return stage.particles == StageParticles::contact;
       return key.number &&
              (key.number == &StageSpec::stabilization || key.number == &StageSpec::stabilization_end) &&

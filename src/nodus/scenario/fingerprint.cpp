@@ -56,11 +56,10 @@ class Canonical {
       line(at + ".name", stage.name);
       // A stage's own line search, linear solver or particles add a line only where it has them: the text of
       // a scenario without is what it was before the keys existed, so that its checkpoints stay valid.
-      keys(
-          stage, "stages[]", at,
-          {stage.line_search == StageSwitch::solver ? std::string_view("stages[].line_search") : "",
-           stage.linear_solver == StageLinearSolver::solver ? std::string_view("stages[].linear_solver") : "",
-           stage.particles == StageParticles::contact ? std::string_view("stages[].particles") : ""});
+      keys(stage, "stages[]", at,
+           {stage.line_search == StageSwitch::solver ? std::string_view("stages[].line_search") : "",
+            !stage.linear_solver ? std::string_view("stages[].linear_solver") : "",
+            stage.particles == StageParticles::contact ? std::string_view("stages[].particles") : ""});
       line(at + ".activate", list(stage.activate));
       line(at + ".release", list(stage.release));
       line(at + ".contact_off", list(stage.contact_off));

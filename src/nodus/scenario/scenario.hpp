@@ -404,9 +404,8 @@ inline std::span<const Key<LoadTarget>> LoadTarget::keys() {
 /// A stage's choice of a solver setting: the `solver` section's, or its own.
 enum class StageSwitch { solver, on, off };
 
-/// A stage's linear solver: solver.linear_solver (solver), or one of its serial choices (LinearSolverKind
-/// in the same order, shifted by one).
-enum class StageLinearSolver { solver, cholmod, umfpack, mumps, klu };
+/// The linear solver of the solver section (solver.linear_solver), declared with SolverSettings below.
+enum class LinearSolverKind;
 
 /// A stage's contact particles: contact.particles (contact), or one of its choices.
 enum class StageParticles { contact, fixed, facing, centres };
@@ -428,8 +427,9 @@ struct StageSpec {
   double stabilization_end = 0.0;
   /// Newton's line search in this stage: solver.line_search (solver), or on or off.
   StageSwitch line_search = StageSwitch::solver;
-  /// The linear solver of this stage (stage_linear_solver()).
-  StageLinearSolver linear_solver = StageLinearSolver::solver;
+  /// The linear solver of this stage, one of the serial ones; none: solver.linear_solver
+  /// (stage_linear_solver()).
+  std::optional<LinearSolverKind> linear_solver;
   /// Where the contact forces act in this stage (as contact.particles); contact: contact.particles.
   StageParticles particles = StageParticles::contact;
 
@@ -465,8 +465,11 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
           "solver.line_search. The knot's releases take it, to come to rest (docs/knot.md)"),
       K::choice(
           "stages[].linear_solver", "solver | cholmod | umfpack | mumps | klu",
-          [](const StageSpec& s) { return static_cast<int>(s.linear_solver); },
-          [](StageSpec& s, int i) { s.linear_solver = static_cast<StageLinearSolver>(i); },
+          // The file's alternatives: "solver" (none), then LinearSolverKind's first four in its order.
+          [](const StageSpec& s) { return s.linear_solver ? static_cast<int>(*s.linear_solver) + 1 : 0; },
+          [](StageSpec& s, int i) {
+            s.linear_solver = i == 0 ? std::nullopt : std::optional(static_cast<LinearSolverKind>(i - 1));
+          },
           "the sparse direct solver of this stage (as solver.linear_solver); solver: solver.linear_solver. "
           "Not with solver.linear_solver: petsc. KLU is the faster on a twisted 3x1 yarn, MUMPS where its "
           "knot forms (docs/performance.md)"),
@@ -612,8 +615,7 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
 
 /// The linear solver that `stage` runs with: its own, or solver.linear_solver.
 inline LinearSolverKind stage_linear_solver(const StageSpec& stage, const SolverSettings& solver) {
-  if (stage.linear_solver == StageLinearSolver::solver) return solver.linear_solver;
-  return static_cast<LinearSolverKind>(static_cast<int>(stage.linear_solver) - 1);
+  return stage.linear_solver.value_or(solver.linear_solver);
 }
 
 struct OutputSettings {

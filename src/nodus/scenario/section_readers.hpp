@@ -70,11 +70,11 @@ constexpr std::string_view kStageCholmodExpected =
 /// What a stage's own linear solver must be, if anything (the reader's and validate()'s checks): empty if
 /// `stage`'s choice goes with the scenario's solver and contact settings.
 inline std::string_view stage_solver_expected(const StageSpec& stage, const Scenario& s) {
-  if (stage.linear_solver == StageLinearSolver::solver) return {};
+  if (!stage.linear_solver) return {};
   if (s.solver.linear_solver == LinearSolverKind::petsc) return kStageSolverWithPetscExpected;
   const bool unsymmetric = s.contact.friction_tangent == FrictionTangent::varying ||
                            s.contact.normal_updates == NormalUpdates::linearized;
-  if (unsymmetric && stage.linear_solver == StageLinearSolver::cholmod) return kStageCholmodExpected;
+  if (unsymmetric && *stage.linear_solver == LinearSolverKind::cholmod) return kStageCholmodExpected;
   return {};
 }
 
