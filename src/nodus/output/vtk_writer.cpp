@@ -48,9 +48,9 @@ void VtkSeriesWriter::warn_if_short_of_space(const simulation::Simulation& sim) 
   if (error || space.available >= bytes) return;
   spdlog::warn(
       "the pictures of this run may not fit on its disk: {} more VTK outputs of {} each at least ({}), {} "
-      "free in '{}'; the run will stop where the disk is full and can then be resumed (output.vtk_every sets "
-      "how often "
-      "they are written)",
+      "free "
+      "in '{}'; the run will stop where the disk is full and can then be resumed (output.vtk_every sets how "
+      "often they are written)",
       due, human_size(series_.last_bytes()), human_size(bytes), human_size(space.available),
       series_.dir().string());
 }
