@@ -16,11 +16,12 @@ from nodus.vtk import read_vtp
 def runs(tmp_path_factory):
     """examples/tool_drag.yaml (a beam dragged by a tool, with contact) run in both encodings."""
     folder = tmp_path_factory.mktemp("vtk")
-    text = (EXAMPLES / "tool_drag.yaml").read_text()
     outs = {}
     for encoding in ("binary", "ascii"):
+        data = nodus.Scenario.from_yaml(EXAMPLES / "tool_drag.yaml").to_dict()
+        data.setdefault("output", {})["vtk_format"] = encoding
         scenario = folder / f"{encoding}.yaml"
-        scenario.write_text(text + f"output:\n  vtk_format: {encoding}\n")
+        nodus.Scenario(data).to_yaml(scenario)
         outs[encoding] = folder / encoding
         assert nodus.run(str(scenario), outs[encoding], quiet=True).converged
     return outs
