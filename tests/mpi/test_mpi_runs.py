@@ -77,6 +77,16 @@ def with_petsc(source, target):
     with_solver(source, target, linear_solver="petsc")
 
 
+def expect_same_files(whole, other, label, failures):
+    """steps.csv, final_nodes.csv and contact_final.csv of `other` byte for byte those of `whole` (the run
+    never stopped); prints each verdict after `label`, and adds a failure for each that differs."""
+    for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
+        same = (whole / f).read_bytes() == (other / f).read_bytes()
+        print(f"{label}: {f} {'identical' if same else 'DIFFERS'}")
+        if not same:
+            failures.append(f"{label}: {f} differs from the run never stopped")
+
+
 def start_and_wait_for_steps(launcher, args, folder, steps):
     """Starts `nodus ARGS` on 2 ranks in a session of its own (stderr kept, text) and waits until FOLDER's
     steps.csv has `steps` rows, the run ends, or 300 s pass. Returns the process and the rows seen."""
@@ -222,11 +232,7 @@ def main():
     r = mpirun(launcher, 2, [exe, "run", str(scenario), "--out", str(resumed), "--quiet", "--resume"])
     if r.returncode != 0:
         failures.append(f"resume: exit status {r.returncode}: {r.stderr[-500:]}")
-    for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
-        same = (whole / f).read_bytes() == (resumed / f).read_bytes()
-        print(f"resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
-        if not same:
-            failures.append(f"resumed on 2 ranks: {f} differs from the run never stopped")
+    expect_same_files(whole, resumed, "resumed on 2 ranks", failures)
 
     # Killed for real (SIGKILL to mpirun and both ranks, mid-run) and resumed on 2 ranks: the files of the run
     # never stopped. tool_drag with 20 times its steps (320), a checkpoint every 5, so that the kill falls
@@ -259,11 +265,7 @@ def main():
             failures.append(f"kill and resume on 2 ranks: {steps} steps before the kill (finished: {finished}), "
                             f"resume status {r.returncode}: {r.stderr[-500:]}")
         else:
-            for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
-                same = (whole / f).read_bytes() == (killed / f).read_bytes()
-                print(f"killed and resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
-                if not same:
-                    failures.append(f"killed and resumed on 2 ranks: {f} differs from the run never stopped")
+            expect_same_files(whole, killed, "killed and resumed on 2 ranks", failures)
 
         # Stopped by SIGTERM to mpirun mid-run (as a scheduler at the end of a job's time): every rank stops at
         # the same Newton iteration, the last converged state is saved and said, and the run resumed on 2 ranks
@@ -284,12 +286,7 @@ def main():
             failures.append(f"SIGTERM and resume on 2 ranks: finished {finished}, stderr {err[-500:]!r}, "
                             f"resume status {r.returncode}: {r.stderr[-500:]}")
         else:
-            for f in ["steps.csv", "final_nodes.csv", "contact_final.csv"]:
-                same = (whole / f).read_bytes() == (stopped / f).read_bytes()
-                print(f"stopped by SIGTERM and resumed on 2 ranks: {f} {'identical' if same else 'DIFFERS'}")
-                if not same:
-                    failures.append(f"stopped by SIGTERM and resumed on 2 ranks: {f} differs from the run never "
-                                    f"stopped")
+            expect_same_files(whole, stopped, "stopped by SIGTERM and resumed on 2 ranks", failures)
 
     for f in failures:
         print("FAIL:", f)
