@@ -52,6 +52,7 @@
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "nodus/solver/blas_kernels.hpp"
+#include "nodus/version.hpp"
 
 namespace {
 
@@ -192,6 +193,7 @@ void report(const std::string& message) {
 int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
   CLI::App app{"nodus: contact-friction mechanics of elastic beam assemblies (units: mm, N, MPa, s)"};
   app.require_subcommand(1);
+  app.set_version_flag("--version", fmt::format("nodus {} (commit {})", nodus::version(), nodus::commit()));
   nodus::run::Request request;
   // Branches side by side run in processes of this executable; under MPI every rank runs them in turn.
   if (nodus::parallel::size() == 1) request.branch_executable = "/proc/self/exe";

@@ -9,7 +9,8 @@ final nodes within 1e-8 mm (compare_runs.py). The scenarios: four verification-t
 (the flagship's program on 60 elements, its stages loop, clamp and thread, scripts/knot_program.py). Then, on
 2 ranks: the same for tool_drag with the lagged factorisation (solver.reuse_factor, PETSc's GMRES on the kept
 factor) against that policy in one process; LU by SuperLU_dist from the scenario's petsc_options, and MUMPS
-from the command line over them (PETSc's -ksp_view says which factorised), against the serial run; bad input
+from the command line over them (PETSc's -ksp_view says which factorised, and summary.json the same), against
+the serial run; a serial solver on 2 ranks said once; bad input
 is reported once with exit status 2 on every rank and nothing written; a run stopped after 7 steps and resumed
 ends with the files of the run never stopped, byte for byte, and so does a longer run killed (SIGKILL) after
 60 steps and resumed, and the same run stopped by SIGTERM to mpirun (which must say so) and resumed. Needs the
@@ -194,6 +195,20 @@ def main():
             continue
         compare(work / "tool_drag_serial", out, f"tool_drag, {package} on 2 ranks "
                 f"({'scenario' if not extra else 'command line over scenario'})", failures)
+        # summary.json says so: the ranks, and the package -ksp_view named.
+        provenance = json.loads((out / "summary.json").read_text())["provenance"]
+        solvers = provenance["linear_solvers"]
+        print(f"tool_drag, {package} on 2 ranks: provenance says {provenance['mpi_ranks']} ranks, {solvers}")
+        if provenance["mpi_ranks"] != 2 or len(solvers) != 1 or not solvers[0].endswith(f"by {package}"):
+            failures.append(f"tool_drag, {package} on 2 ranks: summary.json's provenance says {provenance}")
+
+    # A serial solver under mpirun: every rank repeats the run, and rank 0 says so once.
+    r = mpirun(launcher, 2, [exe, "run", str(examples / "tool_drag.yaml"), "--out", str(work / "serial_on_2"),
+                             "--quiet"])
+    said = r.stderr.count("2 MPI ranks, but solver.linear_solver: cholmod solves in one process")
+    print(f"tool_drag with cholmod on 2 ranks: exit status {r.returncode}, said {said} time(s)")
+    if r.returncode != 0 or said != 1:
+        failures.append(f"cholmod on 2 ranks: status {r.returncode}, said {said} times: {r.stderr[-400:]}")
 
     # A preconditioner type from the command line keeps MUMPS: LU for the twisted pair's symmetric tangent. On
     # one rank PETSc would otherwise take its own LU (it did, until the solver named MUMPS among its options).

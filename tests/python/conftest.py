@@ -110,10 +110,11 @@ def yaml_names(path, section):
 def _without_seconds(value):
     # `analyses` counts the linear solver's analyses, which a resumed process does again for its first step:
     # in a stage without contact (analysed once at the stage start) it counts one more than a run never
-    # stopped, as its wall times differ (docs/output.md).
+    # stopped, as its wall times differ (docs/output.md). `provenance` describes the process that wrote the
+    # file (its threads, the solvers it used), not the result.
     if isinstance(value, dict):
         return {k: _without_seconds(v) for k, v in value.items()
-                if not k.endswith("_seconds") and k != "analyses"}
+                if not k.endswith("_seconds") and k not in ("analyses", "provenance")}
     if isinstance(value, list):
         return [_without_seconds(v) for v in value]
     return value
@@ -121,7 +122,7 @@ def _without_seconds(value):
 
 def assert_same_outputs(reference, folder):
     """Every file of the two output folders equal byte for byte, except summary.json (compared as JSON
-    without its wall-clock `*_seconds` values and its count of analyses), timing.csv (compared without its
+    without its wall-clock `*_seconds` values, its count of analyses and its provenance), timing.csv (compared without its
     last column, wall_seconds) and the checkpoints (they hold the times too: the same file names only)."""
     reference, folder = pathlib.Path(reference), pathlib.Path(folder)
     files_a = sorted(p.relative_to(reference).as_posix() for p in reference.rglob("*") if p.is_file())

@@ -76,6 +76,7 @@ class CountingSolver final : public LinearSolver {
   bool factorize(const SparseMatrix& a) override { return inner_->factorize(a); }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override { return inner_->solve(b); }
   std::string name() const override { return "counting " + inner_->name(); }
+  std::string package() const override { return inner_->package(); }
   bool analysis_reads_values() const override { return inner_->analysis_reads_values(); }
 
   int analyses = 0;

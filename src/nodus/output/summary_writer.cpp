@@ -31,6 +31,7 @@ SummaryData summary_data(const simulation::Simulation& sim, const simulation::Ru
   data.scenario = sim.scenario().path;
   if (sim.contact() && sim.contact_forces()) data.friction = sim.scenario().contact.friction;
   if (sim.scenario().origin) data.branch = sim.scenario().origin->name;
+  data.provenance = this_process(summary.linear_solvers);
   return data;
 }
 
@@ -69,6 +70,18 @@ std::string summary_json(const SummaryData& data) {
       o["final_time"] = b.final_time;
       j["branches"].push_back(std::move(o));
     }
+  }
+  if (data.provenance) {
+    const Provenance& p = *data.provenance;
+    nlohmann::ordered_json o;
+    o["nodus"] = p.version;
+    o["commit"] = p.commit;
+    o["processor"] = p.processor;
+    o["hardware_threads"] = p.hardware_threads;
+    o["threads"] = p.threads;
+    o["mpi_ranks"] = p.mpi_ranks;
+    o["linear_solvers"] = p.linear_solvers;
+    j["provenance"] = std::move(o);
   }
   // Replace rather than throw on invalid UTF-8 in a path or a message.
   return j.dump(2, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + "\n";

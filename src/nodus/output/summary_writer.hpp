@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "nodus/output/provenance.hpp"
 #include "nodus/simulation/simulation.hpp"
 
 namespace nodus::output {
@@ -44,13 +45,16 @@ struct SummaryData {
   std::optional<double> friction;       ///< contact.friction of the run, with contact forces [-]
   std::string branch;                   ///< for the run of a branch: its name; empty for the main run
   std::vector<BranchOutcome> branches;  ///< main run of a scenario with branches: their outcomes
+  /// Where the result came from: nodus, the machine, threads, ranks and linear solvers (not read back).
+  std::optional<Provenance> provenance;
 };
 
 /// Collects the summary of a finished run.
 SummaryData summary_data(const simulation::Simulation& sim, const simulation::RunSummary& summary);
 
 /// The JSON document (an object with the members of SummaryData under the same names, indented, '\n' ended;
-/// `friction` only with contact forces, `branch` only for a branch, `branches` only when there are some).
+/// `friction` only with contact forces, `branch` only for a branch, `branches` only when there are some;
+/// `provenance` last, where there is one).
 std::string summary_json(const SummaryData& data);
 
 /// The SummaryData of a summary.json written by write_summary. Throws std::runtime_error naming the file if

@@ -18,6 +18,7 @@
 #include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/branches.hpp"
 #include "nodus/run/run_outputs.hpp"
+#include "nodus/scenario/declared_keys.hpp"
 #include "nodus/simulation/simulation.hpp"
 #include "nodus/solver/blas_kernels.hpp"
 
@@ -51,6 +52,17 @@ Outcome run_checked(scenario::Scenario scenario, const Request& request) {
   const scenario::Scenario& main_scenario = sim.scenario();
   const fs::path& out = request.out;
   if (!request.branch.empty()) return run_one_branch(request, main_scenario);
+  if (parallel::size() > 1 && parallel::is_root() &&
+      main_scenario.solver.linear_solver != scenario::LinearSolverKind::petsc) {
+    const auto keys = scenario::SolverSettings::keys();
+    const auto key = std::find_if(keys.begin(), keys.end(),
+                                  [](const auto& k) { return k.path == "solver.linear_solver"; });
+    spdlog::warn(
+        "{} MPI ranks, but solver.linear_solver: {} solves in one process: every rank repeats the whole run "
+        "and rank 0 writes it; solver.linear_solver: petsc shares the work among the ranks "
+        "(docs/parallel.md)",
+        parallel::size(), scenario::value_text(*key, main_scenario.solver));
+  }
 
   // One run at a time in a folder, from before it reads what an earlier run left there to the end (branch
   // processes write under it, and do not take it again). A folder that does not exist yet is taken when it is

@@ -424,6 +424,16 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
     counters_.krylov_iterations = base.krylov_iterations + newton.timings().krylov_iterations;
   };
   for (StepObserver* o : observers) o->on_start(*this);
+  // Each solver once, with what it says of itself last (CHOLMOD names the MUMPS it fell back to, if it did).
+  std::vector<std::pair<std::string, std::string>> solvers_used;
+  const auto note_linear_solver = [&solvers_used](const solver::LinearSolver& used) {
+    const auto same = [&used](const auto& entry) { return entry.first == used.name(); };
+    const auto at = std::find_if(solvers_used.begin(), solvers_used.end(), same);
+    if (at == solvers_used.end())
+      solvers_used.emplace_back(used.name(), used.package());
+    else
+      at->second = used.package();
+  };
 
   for (int s = progress_.stage; s < static_cast<int>(scenario_.stages.size()); ++s) {
     const scenario::StageSpec& stage = scenario_.stages[static_cast<std::size_t>(s)];
@@ -437,6 +447,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
       linear_kind = kind;
     }
     linear_solver_name_ = linear->name();
+    note_linear_solver(*linear);
     if (!progress_.stage_begun) {
       const double t0 = time_, t1 = time_ + stage.duration;
       if (!stage.release.empty()) {
@@ -610,6 +621,8 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
   summary.factorizations = counters_.factorizations;
   summary.analyses = counters_.analyses;
   summary.krylov_iterations = counters_.krylov_iterations;
+  if (!solvers_used.empty()) note_linear_solver(*linear);
+  for (const auto& [name, package] : solvers_used) summary.linear_solvers.push_back(name + ": " + package);
   if (!summary.interrupted)
     for (StepObserver* o : observers) o->on_finish(*this, summary);
   return summary;

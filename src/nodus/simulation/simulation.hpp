@@ -94,6 +94,9 @@ struct RunSummary {
   bool cancelled = false;
   /// Steps converged by this call of run() (`steps` counts those of a restored state too).
   int new_steps = 0;
+  /// The linear solvers this call of run() used, in the order of the stages, each as "name: package"
+  /// ("mumps_lu: MUMPS 5.5.1"; LinearSolver::name(), package()).
+  std::vector<std::string> linear_solvers;
 };
 
 /// The run's cumulative counters, carried by a saved state.

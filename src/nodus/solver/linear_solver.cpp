@@ -192,6 +192,9 @@ class MumpsSolver final : public LinearSolver {
   std::string name() const override {
     return symmetric_ ? "mumps_ldlt" : "mumps_lu";
   }
+  std::string package() const override {
+    return "MUMPS " MUMPS_VERSION;
+  }
   bool analysis_reads_values() const override {
     return false;
   }  // it is handed zeros (analyze)
@@ -270,6 +273,12 @@ class CholmodSolver final : public LinearSolver {
     return fallback_->solve(b);
   }
   std::string name() const override { return try_llt_ ? "cholmod" : "cholmod_ldlt"; }
+  std::string package() const override {
+    std::string text = fmt::format("SuiteSparse CHOLMOD {}.{}.{}", CHOLMOD_MAIN_VERSION, CHOLMOD_SUB_VERSION,
+                                   CHOLMOD_SUBSUB_VERSION);
+    if (fallback_) text += ", and " + fallback_->package() + " for tangents not positive definite";
+    return text;
+  }
   bool analysis_reads_values() const override { return false; }  // cholmod_analyze, MUMPS's (above)
 
  private:
@@ -293,6 +302,10 @@ class UmfpackSolver final : public LinearSolver {
   }
   Eigen::VectorXd solve(const Eigen::VectorXd& b) override { return lu_.solve(b); }
   std::string name() const override { return "umfpack"; }
+  std::string package() const override {
+    return fmt::format("SuiteSparse UMFPACK {}.{}.{}", UMFPACK_MAIN_VERSION, UMFPACK_SUB_VERSION,
+                       UMFPACK_SUBSUB_VERSION);
+  }
   // umfpack_symbolic is given the values. Its documentation says that they only serve its statistics (how
   // many nonzeros the ordering puts on the diagonal); nodus does not rely on that.
   bool analysis_reads_values() const override { return true; }
@@ -350,6 +363,9 @@ class KluSolver final : public LinearSolver {
   }
 
   std::string name() const override { return "klu"; }
+  std::string package() const override {
+    return fmt::format("SuiteSparse KLU {}.{}.{}", KLU_MAIN_VERSION, KLU_SUB_VERSION, KLU_SUBSUB_VERSION);
+  }
   // The pivots chosen by the first factorisation after an analysis decide the later ones' round-off: a run
   // that must repeat itself exactly analyses where the run it repeats did.
   bool analysis_reads_values() const override { return true; }

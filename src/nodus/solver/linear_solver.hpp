@@ -27,6 +27,8 @@ class LinearSolver {
   /// Solves a x = b with the last factorisation.
   virtual Eigen::VectorXd solve(const Eigen::VectorXd& b) = 0;
   virtual std::string name() const = 0;
+  /// The library that factorises, with its version ("MUMPS 5.5.1"), for the records of a run.
+  virtual std::string package() const = 0;
   /// Solves a x = b by GMRES (restarted after `max_iterations`, so at most that many), preconditioned by the
   /// last factorisation, which may be of an earlier matrix and pattern of the same size. The result is
   /// accepted on the true residual. `new_pattern`: the pattern of `a` is not the one handed to this solver

@@ -124,6 +124,27 @@ class PetscSolver final : public LinearSolver {
   }
 
   std::string name() const override { return symmetric_ ? "petsc_cholesky" : "petsc_lu"; }
+  /// "PETSc 3.18.5 on 2 ranks: KSP preonly, PC cholesky, factorised by mumps": the options in force, the
+  /// command line's included.
+  std::string package() const override {
+    std::string text = fmt::format("PETSc {}.{}.{} on {} rank{}", PETSC_VERSION_MAJOR, PETSC_VERSION_MINOR,
+                                   PETSC_VERSION_SUBMINOR, parallel::size(), parallel::size() > 1 ? "s" : "");
+    KSPType ksp_type = nullptr;
+    PC pc = nullptr;
+    PCType pc_type = nullptr;
+    if (KSPGetType(ksp_, &ksp_type) != 0 || KSPGetPC(ksp_, &pc) != 0 || PCGetType(pc, &pc_type) != 0)
+      return text;
+    text += fmt::format(": KSP {}, PC {}", ksp_type ? ksp_type : "?", pc_type ? pc_type : "?");
+    PetscBool factor = PETSC_FALSE;
+    if (PetscObjectTypeCompareAny(reinterpret_cast<PetscObject>(pc), &factor, PCLU, PCCHOLESKY, PCILU, PCICC,
+                                  "") == 0 &&
+        factor == PETSC_TRUE) {
+      MatSolverType package = nullptr;
+      if (PCFactorGetMatSolverType(pc, &package) == 0 && package)
+        text += fmt::format(", factorised by {}", package);
+    }
+    return text;
+  }
 
   /// PETSc's GMRES on the ranks' rows, preconditioned on the right by the kept factor (so that its residual
   /// is the true one, |a x - b|, and its test the one of the default solver), at most `max_iterations`
