@@ -8,7 +8,9 @@ cd "$(dirname "$0")/.."
 scenario=${1:-examples/monofilament_knot.yaml}
 out=${2:-results/$(basename "$scenario" .yaml)}
 scripts/setup.sh
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
+# Debian's python3, for which setup.sh installed numpy and matplotlib (the report below runs with it).
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_BENCHMARKS=OFF \
+  -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null
 cmake --build build/release --target nodus nodus_python  # the report's knot metrics come from the module
 # The time left in the progress lines: from the timing of a run kept in examples/timing/ unless an earlier run
 # into "$out" left its own (docs/output.md, "Progress lines").

@@ -11,7 +11,8 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/setup.sh
 jobs=$(nproc)
-cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_TESTS=ON -DNODUS_BUILD_BENCHMARKS=OFF >/dev/null
+cmake -S . -B build/release -G Ninja -DCMAKE_BUILD_TYPE=Release -DNODUS_BUILD_TESTS=ON -DNODUS_BUILD_BENCHMARKS=OFF \
+  -DPython3_EXECUTABLE=/usr/bin/python3 >/dev/null  # Debian's, with the numpy and pytest of setup.sh
 cmake --build build/release -j "$jobs"
 ctest --test-dir build/release --output-on-failure --no-tests=error -j "$jobs" -LE slow
 cmake -S . -B build/debug-sanitize -G Ninja -DCMAKE_BUILD_TYPE=Debug -DNODUS_SANITIZE=ON -DNODUS_BUILD_TESTS=ON -DNODUS_BUILD_BENCHMARKS=OFF \

@@ -24,7 +24,32 @@ import re as _re
 # fixed. The user's own setting wins.
 _os.environ.setdefault("OMP_WAIT_POLICY", "PASSIVE")
 
-from . import _nodus  # noqa: E402  (after the wait policy)
+
+def _import_extension():
+    """The extension, or an ImportError that names the interpreter it was built for where this is another."""
+    import sys
+    from . import _build
+    here = f"{sys.executable} (Python {sys.version_info[0]}.{sys.version_info[1]})"
+    built = f"{_build.executable} (Python {_build.python})"
+    fix = (f"run it with {_build.executable}, or build nodus for this interpreter "
+           f"(cmake -DPython3_EXECUTABLE={sys.executable} ..., with numpy installed for it)")
+    same = _os.path.realpath(sys.executable) == _os.path.realpath(_build.executable)
+    try:
+        import numpy  # noqa: F401  (the extension's arrays)
+    except ImportError as e:
+        if same:
+            raise
+        raise ImportError(f"nodus was built for {built}; this is {here}, which cannot import numpy: {fix}") from e
+    try:
+        from . import _nodus as extension
+    except ImportError as e:
+        if same:
+            raise
+        raise ImportError(f"nodus was built for {built}; this is {here}, which cannot load it ({e}): {fix}") from e
+    return extension
+
+
+_nodus = _import_extension()  # after the wait policy
 from ._nodus import ScenarioError, RunOutcome  # noqa: E402
 
 __version__ = _nodus.version
