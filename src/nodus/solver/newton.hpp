@@ -32,7 +32,7 @@ struct NewtonSettings {
   /// Keep the factorisation of the tangent across Newton iterations and load steps: each increment is then
   /// solved by GMRES on the current tangent, preconditioned by the last factor, and the tangent is factorised
   /// again only when GMRES does not reach `krylov_tolerance` within `krylov_iterations` (docs/performance.md,
-  /// "Issue 17"). false: a factorisation per iteration.
+  /// "Fewer iterations, and a factor kept across them"). false: a factorisation per iteration.
   bool reuse_factor = false;
   int krylov_iterations = 20;  ///< GMRES iterations allowed with a lagged factor before refactorising
   /// An increment from GMRES is accepted when |K du + R| <= krylov_tolerance |R|. At 1e-6, Newton took the
