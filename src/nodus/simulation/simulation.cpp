@@ -441,6 +441,7 @@ RunSummary Simulation::run(const std::vector<StepObserver*>& observers, const Ru
                                       scenario_.solver.easy_iterations};
     if (const scenario::LinearSolverKind kind = scenario::stage_linear_solver(stage, scenario_.solver);
         !petsc && kind != linear_kind) {
+      note_linear_solver(*linear);  // what it says of itself at the end of its stages
       auto next = solver::make_linear_solver(linear_solver_kind(kind, symmetric));
       newton.set_linear_solver(*next);
       linear = std::move(next);
