@@ -4,8 +4,8 @@
 /// DIR/checkpoints/NNN_<stage>.nodus-state at the end of every stage (NNN the stage index) and, with
 /// output.checkpoint_every = N, DIR/checkpoints/latest.nodus-state every N converged steps.
 ///
-/// Format, version kCheckpointVersion (raised at every change of the layout; integers little-endian, doubles as
-/// their IEEE 754 bits, little-endian):
+/// Format, version kCheckpointVersion (raised at every change of the layout; integers little-endian, doubles
+/// as their IEEE 754 bits, little-endian):
 ///
 ///     magic     12 bytes "NODUS-STATE\n"
 ///     version   u32
