@@ -202,13 +202,28 @@ def main():
         if provenance["mpi_ranks"] != 2 or len(solvers) != 1 or not solvers[0].endswith(f"by {package}"):
             failures.append(f"tool_drag, {package} on 2 ranks: summary.json's provenance says {provenance}")
 
-    # A serial solver under mpirun: every rank repeats the run, and rank 0 says so once.
-    r = mpirun(launcher, 2, [exe, "run", str(examples / "tool_drag.yaml"), "--out", str(work / "serial_on_2"),
+    # A serial solver named under mpirun: every rank repeats the run, and rank 0 says so once.
+    with_solver(examples / "tool_drag.yaml", work / "tool_drag_cholmod.yaml", linear_solver="cholmod")
+    r = mpirun(launcher, 2, [exe, "run", str(work / "tool_drag_cholmod.yaml"), "--out", str(work / "serial_on_2"),
                              "--quiet"])
     said = r.stderr.count("2 MPI ranks, but solver.linear_solver: cholmod solves in one process")
     print(f"tool_drag with cholmod on 2 ranks: exit status {r.returncode}, said {said} time(s)")
     if r.returncode != 0 or said != 1:
         failures.append(f"cholmod on 2 ranks: status {r.returncode}, said {said} times: {r.stderr[-400:]}")
+
+    # The example as written (solver.linear_solver: auto) on 2 ranks: the ranks share PETSc's factorisation,
+    # with the serial run's answers.
+    out = work / "auto_on_2"
+    r = mpirun(launcher, 2, [exe, "run", str(examples / "tool_drag.yaml"), "--out", str(out), "--quiet"])
+    said = r.stderr.count("solves in one process")
+    provenance = json.loads((out / "summary.json").read_text())["provenance"] if r.returncode == 0 else {}
+    solvers = provenance.get("linear_solvers", [])
+    print(f"tool_drag with auto on 2 ranks: exit status {r.returncode}, {solvers}, warned {said} time(s)")
+    if r.returncode != 0 or said != 0 or len(solvers) != 1 or not solvers[0].startswith("petsc"):
+        failures.append(f"auto on 2 ranks: status {r.returncode}, solvers {solvers}, warned {said} times: "
+                        f"{r.stderr[-400:]}")
+    else:
+        compare(work / "tool_drag_serial", out, "tool_drag, auto on 2 ranks", failures)
 
     # A preconditioner type from the command line keeps MUMPS: LU for the twisted pair's symmetric tangent. On
     # one rank PETSc would otherwise take its own LU (it did, until the solver named MUMPS among its options).

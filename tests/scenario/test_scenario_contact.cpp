@@ -290,9 +290,11 @@ TEST(ScenarioContactErrors, VaryingFrictionTangentNeedsLu) {
       "contact.friction_tangent: expected frozen with solver.linear_solver: cholmod (the varying tangent is "
       "not "
       "symmetric and needs LU: set solver.linear_solver: umfpack, mumps or klu), got varying";
-  // CHOLMOD by default, and by name; the line is that of friction_tangent.
-  EXPECT_EQ(error_of("contact:\n  friction: 0.3\n  friction_tangent: varying\n"),
-            "knot.yaml:27: " + expected);
+  // CHOLMOD named; the line is that of friction_tangent. By default (auto) an LU solver is chosen instead
+  // (test_linear_solver_choice.cpp).
+  EXPECT_EQ(
+      error_of("contact:\n  friction: 0.3\n  friction_tangent: varying\nsolver: {linear_solver: cholmod}\n"),
+      "knot.yaml:27: " + expected);
   EXPECT_EQ(error_of("contact: {friction_tangent: varying}\nsolver: {linear_solver: cholmod}\n"),
             "knot.yaml:25: " + expected);
   EXPECT_EQ(error_of("contact:\n  friction_tangent: exact\n"),
@@ -326,7 +328,8 @@ TEST(ScenarioContactErrors, LinearizedNormalsNeedLu) {
       "linearized normals' tangent is not symmetric and needs LU: set solver.linear_solver: umfpack, mumps "
       "or "
       "klu), got linearized";
-  EXPECT_EQ(error_of("contact:\n  normal_updates: linearized\n"), "knot.yaml:26: " + expected);
+  EXPECT_EQ(error_of("contact:\n  normal_updates: linearized\nsolver: {linear_solver: cholmod}\n"),
+            "knot.yaml:26: " + expected);
   EXPECT_EQ(error_of("contact:\n  normal_updates: exact\n"),
             "knot.yaml:26: contact.normal_updates: expected one of nested | inside_newton | linearized, got "
             "exact");

@@ -83,7 +83,7 @@ TEST(ScenarioKeys, ExpectedTexts) {
   EXPECT_EQ(expected_text(scenario_key("materials[].poisson_ratio")), "a number in [0, 0.5)");
   EXPECT_EQ(expected_text(scenario_key("beams[].elements")), "an integer >= 1");
   EXPECT_EQ(expected_text(scenario_key("solver.linear_solver")),
-            "one of cholmod | umfpack | mumps | klu | petsc");
+            "one of cholmod | umfpack | mumps | klu | petsc | auto");
   EXPECT_EQ(expected_text(scenario_key("units.length")), "exactly mm");
   EXPECT_EQ(expected_text(scenario_key("solver.line_search")), "true or false");
   EXPECT_EQ(expected_text(scenario_key("beams[].start")), "a list of 3 numbers (mm)");
@@ -104,8 +104,8 @@ double number(std::string_view text) {
 
 TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   const SolverSettings solver;
-  EXPECT_EQ(scenario_key("solver.linear_solver").default_value, "cholmod");
-  EXPECT_EQ(solver.linear_solver, LinearSolverKind::cholmod);
+  EXPECT_EQ(scenario_key("solver.linear_solver").default_value, "auto");
+  EXPECT_EQ(solver.linear_solver, LinearSolverKind::automatic);
   EXPECT_EQ(number(scenario_key("solver.max_newton_iterations").default_value), solver.max_newton_iterations);
   EXPECT_EQ(number(scenario_key("solver.residual_tolerance").default_value), solver.residual_tolerance);
   EXPECT_EQ(number(scenario_key("solver.increment_tolerance").default_value), solver.increment_tolerance);

@@ -285,6 +285,11 @@ std::string describe(const Scenario& scenario) {
 
   line("solver:");
   describe_keys(out, SolverSettings::keys(), scenario.solver, "  ", [&](const Key<SolverSettings>& key) {
+    if (key.path == "solver.linear_solver" && !scenario.solver.linear_solver_reason.empty()) {
+      line(fmt::format("  linear_solver: {}  # {}", value_text(key, scenario.solver),
+                       scenario.solver.linear_solver_reason));
+      return true;
+    }
     if (key.path != "solver.petsc_options") return false;
     if (!scenario.solver.petsc_options.empty())
       line(fmt::format("  petsc_options: {}", yaml_name(scenario.solver.petsc_options)));

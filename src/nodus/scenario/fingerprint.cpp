@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "nodus/scenario/declared_keys.hpp"
+#include "nodus/scenario/linear_solver_choice.hpp"
 #include "nodus/scenario/scenario.hpp"
 #include "nodus/scenario/yaml_reader.hpp"
 
@@ -170,6 +171,7 @@ std::string canonical_text(const Scenario& s) {
 
 std::string state_fingerprint_text(const Scenario& scenario, int stages_run) {
   Scenario made = scenario;
+  choose_linear_solver(made);  // a scenario built in code, not yet resolved: as its file would read
   made.path.clear();
   made.output = OutputSettings{};
   made.branches.clear();

@@ -6,6 +6,7 @@
 
 #include "nodus/parallel/mpi_session.hpp"
 #include "nodus/scenario/keys.hpp"
+#include "nodus/scenario/linear_solver_choice.hpp"
 #include "nodus/scenario/section_readers.hpp"
 #include "nodus/scenario/yaml_input.hpp"
 #include "nodus/scenario/yaml_reader.hpp"
@@ -81,6 +82,7 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_stages(reader, top.require("stages"), condition_names, scenario.conditions, beam_names,
                   scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
+  choose_linear_solver(scenario);
   if (scenario.solver.linear_solver == LinearSolverKind::petsc && !parallel::available())
     reader.fail(*MapView(reader, *top.get("solver")).get("linear_solver"), kPetscBuildExpected);
   if (scenario.contact.friction_tangent == FrictionTangent::varying &&

@@ -498,13 +498,17 @@ inline std::span<const Key<StageSpec>> StageSpec::keys() {
   return keys;
 }
 
-enum class LinearSolverKind { cholmod, umfpack, mumps, klu, petsc };
+/// `automatic` ("auto" in the file) is resolved when the scenario is read or a Simulation is made
+/// (choose_linear_solver, linear_solver_choice.hpp): a run never sees it.
+enum class LinearSolverKind { cholmod, umfpack, mumps, klu, petsc, automatic };
 
 /// The `solver` section. The Newton and stepping defaults are the library's (solver::NewtonSettings,
 /// solver::StepControl); the others equal those of the library structs that take them, which a test checks
 /// (tests/scenario/test_scenario_keys.cpp).
 struct SolverSettings {
-  LinearSolverKind linear_solver = LinearSolverKind::cholmod;
+  LinearSolverKind linear_solver = LinearSolverKind::automatic;
+  /// Why `auto` chose linear_solver, for the settings echo; empty where the file named a solver.
+  std::string linear_solver_reason;
   int max_newton_iterations = ::nodus::solver::NewtonSettings{}.max_iterations;  ///< per step attempt, >= 1
   /// Iterations without a new smallest residual after which a step attempt is given up, >= 0 (0: never).
   int stagnation_iterations = ::nodus::solver::NewtonSettings{}.stagnation_iterations;
@@ -543,13 +547,14 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
   using K = Key<SolverSettings>;
   static const K keys[] = {
       K::choice(
-          "solver.linear_solver", "cholmod | umfpack | mumps | klu | petsc",
+          "solver.linear_solver", "cholmod | umfpack | mumps | klu | petsc | auto",
           [](const SolverSettings& c) { return static_cast<int>(c.linear_solver); },
           [](SolverSettings& c, int i) { c.linear_solver = static_cast<LinearSolverKind>(i); },
           "sparse direct solver: cholmod (Cholesky), umfpack (LU), mumps (multifrontal LDL^T, or LU where "
           "the tangent is not symmetric), klu (sparse LU, keeping its pivots while they serve) or petsc (the "
           "MPI ranks of `mpirun -n N nodus run` together: PETSc's KSP with MUMPS's LDL^T or LU; "
-          "docs/parallel.md)"),
+          "docs/parallel.md); auto: petsc on several MPI ranks, else cholmod for a symmetric tangent, "
+          "klu for an unsymmetric one of up to 20,000 unknowns, mumps above (docs/scenario.md, \"solver\")"),
       K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
                ranges::at_least_one, "iterations per step attempt"),
       K::whole("solver.stagnation_iterations", &SolverSettings::stagnation_iterations, ">= 0",
@@ -829,7 +834,7 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           [](ContactSettings& c, int i) { c.friction_tangent = static_cast<FrictionTangent>(i); },
           "how Newton's tangent linearises the friction force (the force is the same). "
           "frozen: R_N held fixed, a symmetric tangent. varying: the exact derivative with "
-          "R_N varying, not symmetric: needs solver.linear_solver: umfpack, mumps or klu "
+          "R_N varying, not symmetric: needs an LU solver, solver.linear_solver: auto, umfpack, mumps or klu "
           "(docs/contact.md)"),
       K::choice(
           "contact.particles", "fixed | facing | centres",
@@ -859,7 +864,8 @@ inline std::span<const Key<ContactSettings>> ContactSettings::keys() {
           "states. linearized: within each Newton solve, once near equilibrium, the normals "
           "are functions of the state with their derivative in the tangent (quadratic "
           "convergence where the nested loop's fixed point diverges; not symmetric: needs "
-          "solver.linear_solver: umfpack, mumps or klu), the penalties adjusted at converged "
+          "an LU solver, solver.linear_solver: auto, umfpack, mumps or klu), the penalties "
+          "adjusted at converged "
           "states (docs/contact.md)"),
       K::whole("contact.max_normal_iterations", &ContactSettings::max_normal_iterations, ">= 1",
                ranges::at_least_one,

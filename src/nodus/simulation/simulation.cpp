@@ -1,6 +1,7 @@
 #include "nodus/simulation/simulation.hpp"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <numbers>
@@ -12,6 +13,7 @@
 
 #include "nodus/beam/beam_element.hpp"
 #include "nodus/parallel/mpi_session.hpp"
+#include "nodus/scenario/linear_solver_choice.hpp"
 #include "nodus/simulation/equilibrium_problem.hpp"
 #include "nodus/solver/linear_solver.hpp"
 #include "nodus/solver/load_stepping.hpp"
@@ -218,6 +220,11 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
 /// `symmetric`: whether the tangent is (everything but the varying friction tangent and the linearized
 /// normals); MUMPS then factorises
 /// one triangle by LDL^T, and the whole matrix by LU otherwise.
+scenario::Scenario with_linear_solver_chosen(scenario::Scenario scenario) {
+  scenario::choose_linear_solver(scenario);
+  return scenario;
+}
+
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, bool symmetric) {
   switch (kind) {
     case scenario::LinearSolverKind::cholmod:
@@ -230,6 +237,9 @@ solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, boo
       return solver::LinearSolverKind::klu;
     case scenario::LinearSolverKind::petsc:
       break;  // made by make_petsc_solver
+    case scenario::LinearSolverKind::automatic:
+      assert(false && "solver.linear_solver: auto is resolved when the Simulation is made");
+      break;
   }
   return solver::LinearSolverKind::cholmod;
 }
@@ -237,7 +247,7 @@ solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, boo
 }  // namespace
 
 Simulation::Simulation(scenario::Scenario scenario)
-    : scenario_(std::move(scenario)),
+    : scenario_(with_linear_solver_chosen(std::move(scenario))),
       model_(build_model(scenario_)),
       conditions_(build_conditions(scenario_, model_)) {
   check_activation(scenario_, model_);

@@ -1,0 +1,42 @@
+#include "nodus/scenario/linear_solver_choice.hpp"
+
+#include <fmt/format.h>
+
+#include "nodus/parallel/mpi_session.hpp"
+#include "nodus/scenario/scenario.hpp"
+
+namespace nodus::scenario {
+
+int beam_unknowns(const Scenario& scenario) {
+  int unknowns = 0;
+  for (const BeamSpec& beam : scenario.beams) unknowns += 9 * (2 * beam.elements + 1);
+  return unknowns;
+}
+
+void choose_linear_solver(Scenario& scenario) {
+  SolverSettings& solver = scenario.solver;
+  if (solver.linear_solver != LinearSolverKind::automatic) return;
+  if (parallel::size() > 1 && parallel::available()) {
+    solver.linear_solver = LinearSolverKind::petsc;
+    solver.linear_solver_reason = fmt::format("auto: {} MPI ranks share the factorisation", parallel::size());
+    return;
+  }
+  const ContactSettings& contact = scenario.contact;
+  const char* unsymmetric =
+      contact.friction_tangent == FrictionTangent::varying  ? "contact.friction_tangent: varying"
+      : contact.normal_updates == NormalUpdates::linearized ? "contact.normal_updates: linearized"
+                                                            : nullptr;
+  if (!unsymmetric) {
+    solver.linear_solver = LinearSolverKind::cholmod;
+    solver.linear_solver_reason = "auto: the tangent is symmetric";
+    return;
+  }
+  const int unknowns = beam_unknowns(scenario);
+  const bool small = unknowns <= kKluLargestUnknowns;
+  solver.linear_solver = small ? LinearSolverKind::klu : LinearSolverKind::mumps;
+  solver.linear_solver_reason =
+      fmt::format("auto: the tangent is not symmetric ({}), {} beam unknowns ({} {} {})", unsymmetric,
+                  unknowns, small ? "klu up to" : "mumps above", kKluLargestUnknowns, "unknowns");
+}
+
+}  // namespace nodus::scenario

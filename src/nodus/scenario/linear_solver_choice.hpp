@@ -1,0 +1,24 @@
+#pragma once
+/// `solver.linear_solver: auto`, the default: the linear solver chosen from the tangent's symmetry, the
+/// number of unknowns and the number of MPI ranks (docs/scenario.md, "solver").
+
+namespace nodus::scenario {
+
+struct Scenario;
+
+/// Above this many unknowns an unsymmetric tangent goes to MUMPS's LU rather than KLU. Measured on this
+/// project's tangents (docs/performance.md): KLU factorises the 3x1 yarn's (5,463 unknowns) 1.5 times as fast
+/// as MUMPS, MUMPS's LU the 27-fibre bundle's (48,357) 2.0 times as fast as UMFPACK, where KLU's scalar LU
+/// without dense kernels falls behind the multifrontal one as the fronts grow.
+inline constexpr int kKluLargestUnknowns = 20000;
+
+/// The unknowns of the scenario's beams: nine per node, two nodes per element and one more per beam.
+int beam_unknowns(const Scenario& scenario);
+
+/// Replaces solver.linear_solver = auto by the solver it stands for, and says why in
+/// solver.linear_solver_reason: petsc on more than one MPI rank (in a build with PETSc); otherwise cholmod
+/// where the tangent is symmetric, and klu or mumps (by kKluLargestUnknowns) where it is not (the varying
+/// friction tangent, the linearized normals). A named solver is left as it is.
+void choose_linear_solver(Scenario& scenario);
+
+}  // namespace nodus::scenario
