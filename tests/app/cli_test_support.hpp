@@ -10,11 +10,14 @@
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <set>
 #include <sstream>
 #include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
+
+#include "nodus/output/result_h5.hpp"
 
 namespace nodus::testing {
 
@@ -150,6 +153,10 @@ inline std::string without_wall_times(const std::string& text) {
   return out;
 }
 
+/// The attributes of result.h5 that describe the process that wrote it (docs/output.md).
+inline const std::set<std::string> kProvenanceAttributes = {
+    "nodus", "commit", "processor", "hardware_threads", "threads", "mpi_ranks", "linear_solvers"};
+
 /// Every file under `dir` by relative path, with its content; checkpoints and summary.json (they hold wall
 /// times) left out, and timing.csv without its wall times.
 inline std::map<std::string, std::string> results(const fs::path& dir) {
@@ -158,6 +165,12 @@ inline std::map<std::string, std::string> results(const fs::path& dir) {
     if (!entry.is_regular_file()) continue;
     const std::string name = fs::relative(entry.path(), dir).generic_string();
     if (name.find("checkpoints/") != std::string::npos || name.ends_with("summary.json")) continue;
+    if (name.ends_with("result.h5")) {
+      // Its content, not its bytes (HDF5 places what a resumed run rewrites elsewhere in the file), without
+      // the provenance of the process that wrote it.
+      files[name] = output::result_h5_text(entry.path(), kProvenanceAttributes);
+      continue;
+    }
     files[name] =
         name.ends_with("timing.csv") ? without_wall_times(read_file(entry.path())) : read_file(entry.path());
   }

@@ -99,6 +99,17 @@ TEST(ScenarioBranches, AreRead) {
   EXPECT_EQ(*s.conditions[3].moment_axis, Vec3::UnitX());
 }
 
+// output.hdf5 (result.h5, docs/output.md): on unless the file says false; a flag, so nothing else is
+// taken. Like every output key it is not part of the checkpoint fingerprint.
+TEST(ScenarioOutput, Hdf5IsRead) {
+  EXPECT_TRUE(parse_scenario(kBase, "b.yaml").output.hdf5);
+  const Scenario off = parse_scenario(kBase + "output: {hdf5: false}\n", "b.yaml");
+  EXPECT_FALSE(off.output.hdf5);
+  EXPECT_EQ(state_fingerprint_text(off, 1), state_fingerprint_text(parse_scenario(kBase, "b.yaml"), 1));
+  EXPECT_NE(error_of(kBase + "output: {hdf5: 3}\n").find("output.hdf5"), std::string::npos)
+      << error_of(kBase + "output: {hdf5: 3}\n");
+}
+
 TEST(ScenarioBranches, CheckpointEveryIsRead) {
   EXPECT_EQ(parse_scenario(kBase, "b.yaml").output.checkpoint_every, 0);
   const Scenario s = parse_scenario(kBase + "output: {checkpoint_every: 5}\n", "b.yaml");

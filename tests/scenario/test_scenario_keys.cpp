@@ -120,6 +120,8 @@ TEST(ScenarioKeys, DefaultsMatchTheStructs) {
   EXPECT_EQ(number(scenario_key("output.tube_sides").default_value), output.tube_sides);
   EXPECT_EQ(number(scenario_key("output.progress_seconds").default_value), output.progress_seconds);
   EXPECT_EQ(number(scenario_key("output.checkpoint_every").default_value), output.checkpoint_every);
+  EXPECT_EQ(scenario_key("output.hdf5").default_value, "true");
+  EXPECT_TRUE(output.hdf5);
 
   const BeamSpec beam;
   EXPECT_EQ(number(scenario_key("beams[].bending_factor").default_value), beam.bending_factor);

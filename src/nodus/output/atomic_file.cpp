@@ -20,7 +20,7 @@ std::filesystem::path temporary_path(const std::filesystem::path& path, long pid
 }
 
 bool is_temporary_file_name(std::string_view file_name) {
-  static const std::regex pattern(R"(.+\.(csv|vtp|pvd|json|nodus-state)\.tmp[0-9]+)");
+  static const std::regex pattern(R"(.+\.(csv|vtp|pvd|json|xmf|nodus-state)\.tmp[0-9]+)");
   return std::regex_match(file_name.begin(), file_name.end(), pattern);
 }
 

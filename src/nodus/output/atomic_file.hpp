@@ -62,7 +62,7 @@ class AtomicFile {
 std::filesystem::path temporary_path(const std::filesystem::path& path, long pid);
 
 /// Whether `file_name` (a name, no folder) is that of a temporary file of AtomicFile for one of nodus's
-/// output files: "NAME.EXT.tmpPID" with EXT one of csv, vtp, pvd, json, nodus-state. A run killed while
+/// output files: "NAME.EXT.tmpPID" with EXT one of csv, vtp, pvd, json, xmf, nodus-state. A run killed while
 /// writing leaves such a file behind (see remove_stale_temporary_files in output_folder.hpp).
 bool is_temporary_file_name(std::string_view file_name);
 

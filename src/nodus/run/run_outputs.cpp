@@ -13,6 +13,7 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenari
       contact_tables_(dir),
       stage_ends_(dir),
       summary_(dir, write_summary),
+      result_h5_(dir, scenario.output.vtk_every, scenario.output.hdf5),
       checkpoints_(dir, scenario.output.checkpoint_every),
       progress_(scenario.output.progress_seconds, std::move(label),
                 quiet            ? std::filesystem::path()
@@ -20,8 +21,9 @@ RunOutputs::RunOutputs(const std::filesystem::path& dir, const scenario::Scenari
                                  : timing,
                 !timing.empty()) {
   // The checkpoint comes after the files of its step, so that they are complete up to it.
-  observers_ = {&steps_,          &timing_,     &vtk_,     &final_nodes_,
-                &contact_tables_, &stage_ends_, &summary_, &checkpoints_};
+  // result.h5 after steps.csv, whose rows it takes up on resuming.
+  observers_ = {&steps_,      &timing_,  &vtk_,       &final_nodes_, &contact_tables_,
+                &stage_ends_, &summary_, &result_h5_, &checkpoints_};
   if (!quiet) observers_.push_back(&progress_);
 }
 

@@ -1,7 +1,7 @@
 #pragma once
 /// The output writers of one run (the main run, or a branch) into a folder, as the observers of its
 /// Simulation: steps.csv, timing.csv, VTK, final nodes, contact tables, stage-end files, summary.json,
-/// checkpoints and the progress line (docs/output.md).
+/// result.h5, checkpoints and the progress line (docs/output.md).
 
 #include <filesystem>
 #include <string>
@@ -10,6 +10,7 @@
 #include "nodus/output/contact_csv_writer.hpp"
 #include "nodus/output/final_nodes_writer.hpp"
 #include "nodus/output/progress_reporter.hpp"
+#include "nodus/output/result_h5.hpp"
 #include "nodus/output/stage_end_writer.hpp"
 #include "nodus/output/steps_csv_writer.hpp"
 #include "nodus/output/summary_writer.hpp"
@@ -46,6 +47,7 @@ class RunOutputs {
   output::ContactCsvWriter contact_tables_;
   output::StageEndWriter stage_ends_;
   output::SummaryWriter summary_;
+  output::ResultH5Writer result_h5_;
   persistence::CheckpointWriter checkpoints_;
   output::ProgressReporter progress_;
   std::vector<simulation::StepObserver*> observers_;

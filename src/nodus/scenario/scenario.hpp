@@ -630,6 +630,7 @@ struct OutputSettings {
   double progress_seconds = 1.0;  ///< minimum interval between progress lines on stderr [s]
   bool contact_csv = false;       ///< also write contact/contact_NNNNNN.csv at every VTK output step
   int checkpoint_every = 0;  ///< also save the run's state every N converged steps (0: at stage ends only)
+  bool hdf5 = true;          ///< also write result.h5 and result.xmf (every output state in one file)
 
   /// The keys of the file this struct holds, in file order (key.hpp).
   static std::span<const Key<OutputSettings>> keys();
@@ -657,6 +658,9 @@ inline std::span<const Key<OutputSettings>> OutputSettings::keys() {
                "also save the run's complete state every N converged steps, as "
                "checkpoints/latest.nodus-state (the state at the end of every stage is always "
                "saved; docs/output.md); 0: at stage ends only"),
+      K::flag("output.hdf5", &OutputSettings::hdf5,
+              "also write result.h5 (the run's states, steps, contact and beams in one HDF5 file) "
+              "and result.xmf (its XDMF index for ParaView) at every VTK output step"),
   };
   return keys;
 }
