@@ -12,6 +12,8 @@
 //   nodus keys                            print the table of scenario keys (markdown)
 //   nodus knot NODES.csv                  knot type and smallest self-distance of a beam in a nodal table
 //                                         (--yarn NAME: of each fibre, of their mean and between fibres)
+//   nodus view DIR [--out FILE.html]      one self-contained HTML page showing the run in DIR (result.h5)
+//                                         and its branches in 3D (default DIR/view.html; docs/view.md)
 //
 // Exit status: 0 success, 1 internal error, 2 bad input (nothing written; also a checkpoint of another
 // scenario, and --resume without a checkpoint), 3 the run (or a branch) stopped without converging (the
@@ -28,6 +30,7 @@
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -46,6 +49,8 @@
 #include "nodus/output/atomic_file.hpp"
 #include "nodus/output/final_nodes_table.hpp"
 #include "nodus/output/logging.hpp"
+#include "nodus/output/result_h5.hpp"
+#include "nodus/output/view_page.hpp"
 #include "nodus/parallel/mpi_session.hpp"
 #include "nodus/persistence/checkpoint_files.hpp"
 #include "nodus/run/run.hpp"
@@ -189,6 +194,31 @@ void report(const std::string& message) {
   if (nodus::parallel::is_root()) std::fprintf(stderr, "nodus: %s\n", message.c_str());
 }
 
+/// `nodus view`: reads RUN_DIR/result.h5 (and its branches') and writes the page to `out` (default
+/// RUN_DIR/view.html); says on stdout what it wrote. Status 2 for a folder without a readable result.h5 or a
+/// nodus built without the page script, 4 where the page cannot be written.
+int view(const std::filesystem::path& run_dir, std::filesystem::path out, double max_megabytes) {
+  nodus::output::ViewOptions options;
+  options.max_bytes = static_cast<std::uintmax_t>(max_megabytes * 1e6);
+  std::filesystem::path name = run_dir.lexically_normal();
+  if (name.filename().empty()) name = name.parent_path();  // "DIR/"
+  options.title = std::filesystem::absolute(name).filename().string();
+  if (out.empty()) out = run_dir / "view.html";
+  try {
+    const nodus::output::ResultRun run = nodus::output::read_result_h5(run_dir);
+    nodus::output::write_view_page(run, out, options);
+    std::printf("wrote %s (%s)\n", out.c_str(),
+                nodus::output::human_size(std::filesystem::file_size(out)).c_str());
+    return 0;
+  } catch (const nodus::output::WriteError& e) {
+    report(e.what());
+    return kWriteFailed;
+  } catch (const std::exception& e) {  // no result.h5, a damaged one, no page script
+    report(fmt::format("view: {}", e.what()));
+    return kBadInput;
+  }
+}
+
 /// The command line without its PETSc options; `passive_wait_set_here`: for the log.
 int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
   CLI::App app{"nodus: contact-friction mechanics of elastic beam assemblies (units: mm, N, MPa, s)"};
@@ -263,6 +293,20 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
       ->capture_default_str()
       ->check(CLI::PositiveNumber);
 
+  std::filesystem::path view_dir, view_out;
+  double view_max_megabytes = 80.0;
+  CLI::App* view_cmd = app.add_subcommand(
+      "view", "write one self-contained HTML page showing a run and its branches in 3D, for any web browser");
+  view_cmd->add_option("run_dir", view_dir, "output folder of a run (it reads RUN_DIR/result.h5)")
+      ->required();
+  view_cmd->add_option("--out,-o", view_out, "the page to write (default: RUN_DIR/view.html)");
+  view_cmd
+      ->add_option("--max-mb", view_max_megabytes,
+                   "size budget of the states in the page [MB]: where they would take more, the page keeps "
+                   "evenly spread states, the first, last and stage ends among them")
+      ->capture_default_str()
+      ->check(CLI::PositiveNumber);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -298,6 +342,8 @@ int nodus_main(int argc, char** argv, bool passive_wait_set_here) {
         return kBadInput;
       }
     }
+    if (app.got_subcommand("view"))
+      return nodus::parallel::is_root() ? view(view_dir, view_out, view_max_megabytes) : 0;
     if (app.got_subcommand("check")) {
       const nodus::scenario::Scenario scenario = nodus::scenario::read_scenario(scenario_path);
       nodus::simulation::Simulation sim(scenario);
