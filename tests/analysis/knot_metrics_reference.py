@@ -1,5 +1,5 @@
 """The knot metrics in numpy, as scripts/knot_report.py computed them before they moved into C++
-(src/nodus/analysis/knot_metrics.hpp, issue 19): an independent implementation of the same definitions, kept
+(src/nodus/analysis/knot_metrics.hpp): an independent implementation of the same definitions, kept
 as the reference of tests/analysis/test_knot_metrics.cpp (KnotMetricsPythonReference.SameNumbersOnASyntheticKnot), which
 runs it on a synthetic run folder and compares every number with the C++. Not used by nodus itself.
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Compares a run with a reference run of the same scenario (issue 20: the PETSc backend on N ranks against
+"""Compares a run with a reference run of the same scenario (the PETSc backend on N ranks against
 the serial backend).
 
     compare_runs.py REFERENCE_DIR RUN_DIR [--nodes-tolerance 1e-8] [--end-only]

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The PETSc backend under mpirun against the serial backend (issue 20, must-haves 3 and 4).
+"""The PETSc backend under mpirun against the serial backend.
 
     test_mpi_runs.py NODUS MPIRUN EXAMPLES_DIR WORK_DIR
 

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""The verification cases on the PETSc backend under mpirun against the serial backend (issue 20, must-have 3).
+"""The verification cases on the PETSc backend under mpirun against the serial backend.
 
     test_mpi_verification.py TEST_VERIFICATION MPIRUN WORK_DIR [GTEST_FILTER]
 

@@ -400,7 +400,7 @@ TEST(ScenarioYarns, WhatTheLayoutCannotUseIsRefusedWithItsLine) {
   EXPECT_NE(error.find("(their lengths over the spacing, 0.1118 mm here: 8.05e+07 points), got auto"),
             std::string::npos)
       << error;
-  // The mutant of the paper's 3x25 yarn.
+  // The paper's 3x25 yarn with a fibre radius of 1e308.
   std::ifstream in(std::string(NODUS_SOURCE_DIR) + "/examples/yarn_3x25.yaml");
   std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   text.replace(text.find("fibre_radius: 0.0112"), 20, "fibre_radius: 1e308");

@@ -529,7 +529,7 @@ TEST_P(ContactHelix, RadiusAndLineForceMatchTheHelicalRod) {
 INSTANTIATE_TEST_SUITE_P(Strategies, ContactHelix, testing::ValuesIn(kStrategies),
                          [](const testing::TestParamInfo<Strategy>& param) { return param.param.name; });
 
-/// The double helix at the helix angles of yarns (issue 16). The end sections' centres are pulled by 1e-3 L
+/// The double helix at the helix angles of yarns. The end sections' centres are pulled by 1e-3 L
 /// and then turned about the common axis by tan(alpha) L / R radians in 40 steps, their directors held (so
 /// that each strand's own twist, Phi (cos(alpha) - 1) / L, stays small); the contact forces act at the facing
 /// points of the borders (`particles: facing`: fixed particles turn the sections over in torsion above about
@@ -571,8 +571,8 @@ TEST_P(ContactHelixAngle, LineLoadMatchesTheHelicalRodAtFiniteAngleAndStretch) {
   ASSERT_GE(h.count, 10);
   // The winding reaches the angle aimed at (the end zones and the stretch move it by a few percent).
   EXPECT_NEAR(h.alpha * 180 / kPi, c.degrees, 0.1 * c.degrees);
-  // The line load of the contact elements is the helical rod's, kappa N_t - tau N_b, within 0.5 % (issue 16;
-  // measured 0.07, 0.05 and 0.18 % at 10, 20 and 30 degrees).
+  // The line load of the contact elements is the helical rod's, kappa N_t - tau N_b, within 0.5 %
+  // (measured 0.07, 0.05 and 0.18 % at 10, 20 and 30 degrees).
   EXPECT_NEAR(h.p_num, h.ref.line_load, 5e-3 * h.ref.line_load);
   // The penalty holds the strands within the band of Eq. 54, and the axes are as far apart as the borders
   // of the sections facing each other less the penetration. The borders are measured from the directors at

@@ -7,7 +7,7 @@
 /// - A zone pairs [a, b] on beam I with [c, d] on beam J; c > d when the parts run antiparallel. For a pair
 ///   of distinct beams I < J; for self-contact I = J and [a, b] is the later part (a > c, a > d).
 /// - `normal` is a unit vector pointing from the particle on I towards the particle on J; the gap is
-///   <x_J - x_I, normal>, negative when the surfaces overlap. The force on J (next issue) acts along +normal.
+///   <x_J - x_I, normal>, negative when the surfaces overlap. The force on J acts along +normal.
 
 #include <vector>
 

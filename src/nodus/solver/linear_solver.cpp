@@ -48,7 +48,7 @@ class FactorPreconditioner {
   LinearSolver* factor_ = nullptr;
 };
 
-/// Orders with METIS only: the fill-reducing ordering the issue asks for, and the same for every matrix.
+/// Orders with METIS only: a fill-reducing ordering, and the same for every matrix.
 template <class Solver>
 void use_metis(Solver& solver) {
   cholmod_common& c = solver.cholmod();
