@@ -4,10 +4,10 @@
 // when the step slider moves, and reads a fibre node and a contact element when they are clicked; it switches
 // to a branch and colours by a measure, and saves screenshots as artefacts.
 //
-//   node tests/view/browser_test.mjs PAGES_DIR WEB_DIR SCREENSHOT_DIR
+//   node tests/view/browser_test.mjs PAGES_DIR WEB_DIR SCREENSHOT_DIR [NAME ...]
 //
-// PAGES_DIR holds small.html and contact.html (and big.html, when written); WEB_DIR is web/, whose
-// node_modules has playwright-core. Prints each page's size and load time; exits 1 on the first failure.
+// PAGES_DIR holds small.html, contact.html (and big.html, when written) and the example pages, or the pages
+// NAME.html named; WEB_DIR is web/, whose node_modules has playwright-core. Prints each page's size and load time; exits 1 on the first failure.
 
 import { createRequire } from 'node:module';
 import fs from 'node:fs';
@@ -15,9 +15,9 @@ import os from 'node:os';
 import path from 'node:path';
 import { pathToFileURL } from 'node:url';
 
-const [pagesDir, webDir, shotsDir] = process.argv.slice(2);
+const [pagesDir, webDir, shotsDir, ...named] = process.argv.slice(2);
 if (!shotsDir) {
-  console.error('usage: node browser_test.mjs PAGES_DIR WEB_DIR SCREENSHOT_DIR');
+  console.error('usage: node browser_test.mjs PAGES_DIR WEB_DIR SCREENSHOT_DIR [NAME ...]  (NAME.html in PAGES_DIR)');
   process.exit(2);
 }
 const require = createRequire(path.join(path.resolve(webDir), 'package.json'));
@@ -185,8 +185,8 @@ const context = await chromium.launchPersistentContext(profile, {
 });
 try {
   const blank = await context.newPage();
-  for (const name of ['small', 'contact', 'big', 'example_bend_and_release', 'example_tool_drag'])
-    await testPage(context, blank, name);
+  const names = named.length > 0 ? named : ['small', 'contact', 'big', 'example_bend_and_release', 'example_tool_drag'];
+  for (const name of names) await testPage(context, blank, name);
 } finally {
   await context.close();
   fs.rmSync(profile, { recursive: true, force: true });

@@ -193,6 +193,25 @@ function main() {
 
   // Picking: a click (a press and release without dragging) reads the fibre node or contact element under it.
   const raycaster = new Raycaster();
+  const PICK_PIXELS = 8;
+  const nearestContactOnScreen = (x, y, rect) => {
+    const c = view.current.contacts;
+    const count = view.contactMesh.count;
+    const v = new Vector3();
+    let best = null;
+    let bestDistance = PICK_PIXELS;
+    for (let e = 0; e < count; e++) {
+      const r = e * CONTACT_RECORD;
+      v.set((c[r] + c[r + 3]) / 2, (c[r + 1] + c[r + 4]) / 2, (c[r + 2] + c[r + 5]) / 2).project(camera);
+      if (v.z > 1) continue;  // behind the camera
+      const d = Math.hypot(((v.x + 1) / 2) * rect.width - x, ((1 - v.y) / 2) * rect.height - y);
+      if (d < bestDistance) {
+        bestDistance = d;
+        best = { object: view.contactMesh, instanceId: e, distance: 0 };
+      }
+    }
+    return best;
+  };
   const pickAt = (clientX, clientY) => {
     const rect = renderer.domElement.getBoundingClientRect();
     const p = new Vector2(((clientX - rect.left) / rect.width) * 2 - 1, -((clientY - rect.top) / rect.height) * 2 + 1);
@@ -203,7 +222,12 @@ function main() {
     // A contact element lies between the surfaces, mostly inside the tubes: it is taken when the ray meets
     // it within a fibre diameter behind the first surface it meets, or anywhere with see-through fibres.
     const reach = 2 * Math.max(...run.beams.map((b) => b.radius));
-    const contact = hits.find((h) => h.object === view.contactMesh);
+    let contact = hits.find((h) => h.object === view.contactMesh);
+    // A contact element a few pixels across is hard to hit: with see-through fibres, the element whose middle
+    // is drawn nearest the click, within PICK_PIXELS, is taken when the ray meets none.
+    if (!contact && ui.seeThrough.checked && view.contactMesh && view.contactMesh.visible) {
+      contact = nearestContactOnScreen(clientX - rect.left, clientY - rect.top, rect);
+    }
     const hit = contact && (ui.seeThrough.checked || contact.distance <= hits[0].distance + reach) ? contact : hits[0];
     const info = hit ? view.describeHit(hit) : null;
     ui.showPick(info);
