@@ -88,8 +88,8 @@ void BM_ContactAssembly(benchmark::State& state) {
 }
 
 /// Second argument: the solver (nodus::solver::LinearSolverKind: 0 cholmod, 1 cholmod_ldlt, 2 umfpack, 3
-/// mumps_ldlt, 4 mumps_lu). The bundle has no friction, so its tangent is symmetric: the LU solvers factorise
-/// the whole matrix as they would the varying friction tangent, which has the same pattern.
+/// mumps_ldlt, 4 mumps_lu, 5 klu). The bundle has no friction, so its tangent is symmetric: the LU solvers
+/// factorise the whole matrix as they would the varying friction tangent, which has the same pattern.
 void BM_ContactFactorizeSolve(benchmark::State& state) {
   Setup s(static_cast<int>(state.range(0)));
   const auto kind = static_cast<nodus::solver::LinearSolverKind>(state.range(1));
@@ -306,13 +306,19 @@ void sizes(benchmark::internal::Benchmark* b) {
 /// place) and UMFPACK are left out at 75 fibres, where one factorisation takes minutes.
 void sizes_and_solvers(benchmark::internal::Benchmark* b) {
   using nodus::solver::LinearSolverKind;
-  for (int fibres : {7, 27, 75})
+  // 3 fibres: only the two LU solvers that solver.linear_solver: auto chooses between (KLU and MUMPS's LU);
+  // KLU up to 27 fibres (its factor at 75 would take minutes).
+  for (int fibres : {3, 7, 27, 75})
     for (LinearSolverKind kind :
          {LinearSolverKind::cholmod, LinearSolverKind::cholmod_ldlt, LinearSolverKind::umfpack,
-          LinearSolverKind::mumps_ldlt, LinearSolverKind::mumps_lu})
-      if (fibres < 75 || kind == LinearSolverKind::cholmod || kind == LinearSolverKind::mumps_ldlt ||
-          kind == LinearSolverKind::mumps_lu)
-        b->Args({fibres, static_cast<int>(kind)});
+          LinearSolverKind::mumps_ldlt, LinearSolverKind::mumps_lu, LinearSolverKind::klu}) {
+      const bool lu_pair = kind == LinearSolverKind::mumps_lu || kind == LinearSolverKind::klu;
+      if (fibres == 3 && !lu_pair) continue;
+      if (fibres == 75 && kind != LinearSolverKind::cholmod && kind != LinearSolverKind::mumps_ldlt &&
+          kind != LinearSolverKind::mumps_lu)
+        continue;
+      b->Args({fibres, static_cast<int>(kind)});
+    }
   b->ArgNames({"fibres", "solver"})->Unit(benchmark::kMillisecond);
 }
 

@@ -33,17 +33,17 @@ TEST(LinearSolverChoice, SymmetricTangentGoesToCholmod) {
 }
 
 TEST(LinearSolverChoice, UnsymmetricTangentGoesToKluThenMumpsBySize) {
-  // 9 (2 n + 1) unknowns: 1,110 elements give 19,989 (<= 20,000), 1,112 give 20,025.
+  // 9 (2 n + 1) unknowns: 332 elements give 5,985 (<= 6,000), 333 give 6,003.
   const std::string varying = "contact: {friction: 0.3, friction_tangent: varying}\n";
-  const Scenario small = parse_scenario(text(1110, varying, ""), "s.yaml");
-  EXPECT_EQ(beam_unknowns(small), 19989);
+  const Scenario small = parse_scenario(text(332, varying, ""), "s.yaml");
+  EXPECT_EQ(beam_unknowns(small), 5985);
   EXPECT_EQ(small.solver.linear_solver, LinearSolverKind::klu);
   EXPECT_EQ(
       small.solver.linear_solver_reason,
-      "auto: the tangent is not symmetric (contact.friction_tangent: varying), 19989 beam unknowns (klu up "
-      "to 20000 unknowns)");
-  const Scenario large = parse_scenario(text(1112, varying, ""), "s.yaml");
-  EXPECT_EQ(beam_unknowns(large), 20025);
+      "auto: the tangent is not symmetric (contact.friction_tangent: varying), 5985 beam unknowns (klu up "
+      "to 6000 unknowns)");
+  const Scenario large = parse_scenario(text(333, varying, ""), "s.yaml");
+  EXPECT_EQ(beam_unknowns(large), 6003);
   EXPECT_EQ(large.solver.linear_solver, LinearSolverKind::mumps);
   const Scenario linearized =
       parse_scenario(text(10, "contact: {normal_updates: linearized}\n", ""), "s.yaml");

@@ -7,10 +7,11 @@ namespace nodus::scenario {
 struct Scenario;
 
 /// Above this many unknowns an unsymmetric tangent goes to MUMPS's LU rather than KLU. Measured on this
-/// project's tangents (docs/performance.md): KLU factorises the 3x1 yarn's (5,463 unknowns) 1.5 times as fast
-/// as MUMPS, MUMPS's LU the 27-fibre bundle's (48,357) 2.0 times as fast as UMFPACK, where KLU's scalar LU
-/// without dense kernels falls behind the multifrontal one as the fronts grow.
-inline constexpr int kKluLargestUnknowns = 20000;
+/// project's tangents (docs/performance.md, "KLU or MUMPS"): KLU factorises the twisted 3x1 yarn's (5,463
+/// unknowns) 1.5 times as fast as MUMPS, but a packed bundle's 1.3 times slower at 5,373 unknowns, 2.9 times
+/// at 12,537 and 23 times at 48,357: its scalar LU without dense kernels falls behind the multifrontal one as
+/// the fronts grow.
+inline constexpr int kKluLargestUnknowns = 6000;
 
 /// The unknowns of the scenario's beams: nine per node, two nodes per element and one more per beam.
 int beam_unknowns(const Scenario& scenario);

@@ -554,7 +554,7 @@ inline std::span<const Key<SolverSettings>> SolverSettings::keys() {
           "the tangent is not symmetric), klu (sparse LU, keeping its pivots while they serve) or petsc (the "
           "MPI ranks of `mpirun -n N nodus run` together: PETSc's KSP with MUMPS's LDL^T or LU; "
           "docs/parallel.md); auto: petsc on several MPI ranks, else cholmod for a symmetric tangent, "
-          "klu for an unsymmetric one of up to 20,000 unknowns, mumps above (docs/scenario.md, \"solver\")"),
+          "klu for an unsymmetric one of up to 6,000 unknowns, mumps above (docs/scenario.md, \"solver\")"),
       K::whole("solver.max_newton_iterations", &SolverSettings::max_newton_iterations, ">= 1",
                ranges::at_least_one, "iterations per step attempt"),
       K::whole("solver.stagnation_iterations", &SolverSettings::stagnation_iterations, ">= 0",
