@@ -225,6 +225,20 @@ def main():
     else:
         compare(work / "tool_drag_serial", out, "tool_drag, auto on 2 ranks", failures)
 
+    # auto with a stage that names its own solver: one process's solvers, so the serial choice, said once (PETSc's
+    # ranks share the rows of one solver, which the stage's would not).
+    data = nodus.Scenario.from_yaml(examples / "tool_drag.yaml").to_dict()
+    data.get("solver", {}).pop("linear_solver", None)
+    data["stages"][0]["linear_solver"] = "klu"
+    nodus.Scenario(data).to_yaml(work / "tool_drag_stage_klu.yaml")
+    r = mpirun(launcher, 2, [exe, "run", str(work / "tool_drag_stage_klu.yaml"), "--out",
+                             str(work / "stage_klu_on_2"), "--quiet"])
+    said = r.stderr.count("solves in one process")
+    print(f"tool_drag, auto with a stage's own klu on 2 ranks: exit status {r.returncode}, said {said} time(s)")
+    if r.returncode != 0 or said != 1:
+        failures.append(f"auto with a stage solver on 2 ranks: status {r.returncode}, said {said} times: "
+                        f"{r.stderr[-400:]}")
+
     # A preconditioner type from the command line keeps MUMPS: LU for the twisted pair's symmetric tangent. On
     # one rank PETSc would otherwise take its own LU (it did, until the solver named MUMPS among its options).
     for n in (1, 2):

@@ -287,6 +287,38 @@ TEST_F(ResultH5, ResumedRunHasTheContentOfTheRunNeverStopped) {
   EXPECT_FALSE(std::filesystem::exists(out / "result.h5.damaged"));
 }
 
+TEST_F(ResultH5, ResumeFromAnOlderCheckpointDropsTheStatesWrittenAfterIt) {
+  // A run killed after writing states its newest checkpoint does not hold: here the finished run's folder
+  // with only the checkpoint of the end of `press` (step 3) left, and states 0, 2, 4 and 6 in result.h5. The
+  // resume drops 4 and 6, computes steps 4 to 6 again and must end with the content of the run never stopped.
+  const std::set<std::string> provenance = {"nodus",   "commit",    "processor",     "hardware_threads",
+                                            "threads", "mpi_ranks", "linear_solvers"};
+  const std::string reference = result_h5_text(out_ / "result.h5", provenance);
+  const std::filesystem::path out = scratch_.path() / "older";
+  std::filesystem::copy(out_, out, std::filesystem::copy_options::recursive);
+  std::filesystem::remove(out / "summary.json");
+  int kept = 0;
+  for (const auto& entry : std::filesystem::directory_iterator(out / "checkpoints")) {
+    if (entry.path().filename().string().rfind("000_press", 0) == 0) {
+      ++kept;
+    } else {
+      std::filesystem::remove(entry.path());
+    }
+  }
+  ASSERT_EQ(kept, 1);
+  ASSERT_EQ(read_result_h5(out).states.size(), 4u);
+  std::string err;
+  ASSERT_EQ(run_nodus("run " + scenario_.string() + " --out " + out.string() + " -q --resume",
+                      scratch_.path(), &err),
+            0)
+      << err;
+  const ResultRun resumed = read_result_h5(out);
+  ASSERT_EQ(resumed.states.size(), 4u);
+  EXPECT_EQ(resumed.states[2].step, 4);
+  EXPECT_EQ(resumed.states[3].step, 6);
+  EXPECT_EQ(result_h5_text(out / "result.h5", provenance), reference);
+}
+
 TEST_F(ResultH5, DamagedFileIsMovedAsideOnResuming) {
   const std::filesystem::path out = scratch_.path() / "damaged";
   std::string err;

@@ -16,7 +16,13 @@ int beam_unknowns(const Scenario& scenario) {
 void choose_linear_solver(Scenario& scenario) {
   SolverSettings& solver = scenario.solver;
   if (solver.linear_solver != LinearSolverKind::automatic) return;
-  if (parallel::size() > 1 && parallel::available()) {
+  // Stages with solvers of their own run in one process (PETSc's ranks share the rows of one solver): with
+  // any, the serial choice below, and the run says once that every rank repeats it.
+  bool stage_solvers = false;
+  for (const StageSpec& stage : scenario.stages) stage_solvers = stage_solvers || stage.linear_solver;
+  for (const BranchSpec& branch : scenario.branches)
+    for (const StageSpec& stage : branch.stages) stage_solvers = stage_solvers || stage.linear_solver;
+  if (parallel::size() > 1 && parallel::available() && !stage_solvers) {
     solver.linear_solver = LinearSolverKind::petsc;
     solver.linear_solver_reason = fmt::format("auto: {} MPI ranks share the factorisation", parallel::size());
     return;

@@ -17,7 +17,8 @@ inline constexpr int kKluLargestUnknowns = 6000;
 int beam_unknowns(const Scenario& scenario);
 
 /// Replaces solver.linear_solver = auto by the solver it stands for, and says why in
-/// solver.linear_solver_reason: petsc on more than one MPI rank (in a build with PETSc); otherwise cholmod
+/// solver.linear_solver_reason: petsc on more than one MPI rank (in a build with PETSc, and where no stage
+/// names a solver of its own); otherwise cholmod
 /// where the tangent is symmetric, and klu or mumps (by kKluLargestUnknowns) where it is not (the varying
 /// friction tangent, the linearized normals). A named solver is left as it is.
 void choose_linear_solver(Scenario& scenario);

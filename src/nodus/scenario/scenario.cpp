@@ -82,7 +82,6 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       read_stages(reader, top.require("stages"), condition_names, scenario.conditions, beam_names,
                   scenario.contact, moment_axes, load_values, stage_names, &load_values_after);
   scenario.solver = read_solver(reader, top);
-  choose_linear_solver(scenario);
   if (scenario.solver.linear_solver == LinearSolverKind::petsc && !parallel::available())
     reader.fail(*MapView(reader, *top.get("solver")).get("linear_solver"), kPetscBuildExpected);
   if (scenario.contact.friction_tangent == FrictionTangent::varying &&
@@ -102,6 +101,7 @@ Scenario parse_root(const Reader& reader, const YAML::Node& root, const std::str
       scenario.conditions[c].moment_axis = moment_axes.axis(static_cast<int>(c));
     }
   }
+  choose_linear_solver(scenario);  // after the branches: their stages' own solvers count
   check_stage_solvers(reader, top, scenario);
   // Everything read has been checked with its line; this checks the same again, as for a scenario built in
   // code, so that validate() accepts whatever the reader accepts.

@@ -217,14 +217,15 @@ ContactLawSettings resolve_laws(const scenario::Scenario& s) {
   return laws;
 }
 
-/// `symmetric`: whether the tangent is (everything but the varying friction tangent and the linearized
-/// normals); MUMPS then factorises
-/// one triangle by LDL^T, and the whole matrix by LU otherwise.
+/// `scenario` with solver.linear_solver: auto resolved (a scenario built in code; a file's is resolved when
+/// read).
 scenario::Scenario with_linear_solver_chosen(scenario::Scenario scenario) {
   scenario::choose_linear_solver(scenario);
   return scenario;
 }
 
+/// `symmetric`: whether the tangent is (everything but the varying friction tangent and the linearized
+/// normals); MUMPS then factorises one triangle by LDL^T, and the whole matrix by LU otherwise.
 solver::LinearSolverKind linear_solver_kind(scenario::LinearSolverKind kind, bool symmetric) {
   switch (kind) {
     case scenario::LinearSolverKind::cholmod:
