@@ -23,7 +23,7 @@ struct ResultBeam {
 /// The contact elements of one state, column by column as in contact_final.csv (one entry per element).
 struct ResultContacts {
   std::vector<int> zone;
-  std::vector<int> beam_i, beam_j;        ///< beam indices into ResultRun::beams
+  std::vector<int> beam_i, beam_j;         ///< beam indices into ResultRun::beams
   std::vector<std::array<double, 3>> x_i;  ///< particle on beam I [mm]
   std::vector<std::array<double, 3>> x_j;  ///< particle on beam J [mm]
   std::vector<std::array<double, 3>> normal;
